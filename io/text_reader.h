@@ -1,0 +1,70 @@
+// Line-oriented reading of text formats (ASF, AMC, BVH, splits) with the file:line of
+// every error. Parsers take the whole text plus a source name so fuzz targets and tests
+// can parse from memory exactly as from disk.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace jgpm {
+
+// Reads a whole file. InputError when it is missing, a directory, unreadable, empty, or
+// holds NUL bytes (a binary file given where text was expected). `what` names the
+// expected content, e.g. "an ASF skeleton".
+std::string ReadTextFile(const std::filesystem::path& path, const std::string& what);
+
+// InputError when `path` is missing or a directory.
+void CheckInputFile(const std::filesystem::path& path, const std::string& what);
+
+// Writes `text` to `path` atomically (temporary file in the same folder, then rename), so
+// a failure never leaves a half-written or clobbered file. InputError on failure.
+void WriteTextFileAtomic(const std::filesystem::path& path, const std::string& text);
+
+// Splits a line at blanks (spaces, tabs).
+std::vector<std::string_view> SplitBlanks(std::string_view line);
+
+// Iterates the lines of a text; '\r' before '\n' is dropped. Line numbers count from 1.
+class LineReader {
+ public:
+  // `text` must outlive the reader.
+  LineReader(std::string_view text, std::string source);
+
+  // Advances to the next line; false at the end of the text.
+  bool Next();
+  // Steps back one line so the next Next() returns the current line again (one level).
+  void Unread();
+  std::string_view line() const { return line_; }
+  int line_number() const { return line_number_; }
+  const std::string& source() const { return source_; }
+  // "source:line"; at the end of the text, "source:line" of the last line read.
+  std::string Where() const;
+
+  // Throws InputError("source:line: <what>").
+  [[noreturn]] void Fail(const std::string& what) const;
+
+  // Parses a finite number (NaN and inf are rejected). `what` names the value for errors.
+  double ParseDouble(std::string_view token, const std::string& what) const;
+  // Like ParseDouble, but also accepts "inf"/"-inf" (ASF limits).
+  double ParseDoubleOrInf(std::string_view token, const std::string& what) const;
+  int ParseInt(std::string_view token, const std::string& what) const;
+
+ private:
+  std::string_view text_;
+  std::string source_;
+  size_t pos_ = 0;
+  size_t line_start_ = 0;
+  size_t previous_pos_ = 0;
+  std::string_view line_;
+  int line_number_ = 0;
+};
+
+// Quotes a token for an error message, shortening long ones.
+std::string Quote(std::string_view token);
+
+// Formats a double with the fewest digits that read back to the same value.
+std::string FormatShortest(double value);
+
+}  // namespace jgpm
