@@ -50,6 +50,7 @@ void ExpectTokenCount(const LineReader& in, const std::vector<std::string_view>&
 std::vector<DofLimit> ParseLimits(LineReader& in, std::string_view rest, size_t count,
                                   const std::string& bone) {
   std::vector<DofLimit> limits;
+  const std::string where = in.Where();  // errors about the count point at the limits line
   auto parse_groups = [&](std::string_view text) {
     text = Trim(text);
     while (!text.empty()) {
@@ -76,13 +77,14 @@ std::vector<DofLimit> ParseLimits(LineReader& in, std::string_view rest, size_t 
     if (!in.Next()) in.Fail("file ends inside the limits of bone '" + bone + "'");
     if (IsSkippable(in.line())) continue;
     if (Trim(in.line()).front() != '(') {
-      in.Fail("expected " + std::to_string(count) + " limit pairs for the dofs of bone '" + bone +
-              "', found " + std::to_string(limits.size()));
+      ThrowInputError(where, "expected " + std::to_string(count) +
+                                 " limit pairs for the dofs of bone '" + bone + "', found " +
+                                 std::to_string(limits.size()));
     }
     parse_groups(in.line());
   }
   if (limits.size() != count) {
-    in.Fail("expected " + std::to_string(count) + " limit pairs for the dofs of bone '" + bone +
+    ThrowInputError(where, "expected " + std::to_string(count) + " limit pairs for the dofs of bone '" + bone +
             "', found " + std::to_string(limits.size()));
   }
   return limits;
@@ -109,7 +111,8 @@ std::vector<Dof> ParseDofList(const LineReader& in, const std::vector<std::strin
   return dofs;
 }
 
-Bone ParseBone(LineReader& in, double angle_to_deg) {
+// `name_where` receives the "file:line" of the bone's name.
+Bone ParseBone(LineReader& in, double angle_to_deg, std::string* name_where) {
   Bone bone;
   const int begin_line = in.line_number();
   bool has_id = false, has_direction = false, has_length = false, has_axis = false;
@@ -130,6 +133,7 @@ Bone ParseBone(LineReader& in, double angle_to_deg) {
     } else if (key == "name") {
       ExpectTokenCount(in, tokens, 2, "a bone name");
       bone.name = std::string(tokens[1]);
+      *name_where = in.Where();
     } else if (key == "direction") {
       ExpectTokenCount(in, tokens, 4, "a direction");
       bone.direction = ParseVector3(in, tokens, 1, "direction");
@@ -261,10 +265,13 @@ Skeleton ParseAsf(std::string_view text, const std::string& source) {
       }
     } else if (section == ":bonedata") {
       if (key != "begin") in.Fail("expected 'begin' to open a bone block, found " + Quote(key));
-      Bone bone = ParseBone(in, angle_to_deg);
-      if (bone.name == "root") in.Fail("a bone may not be called 'root'");
+      std::string name_where;
+      Bone bone = ParseBone(in, angle_to_deg, &name_where);
+      if (bone.name == "root") ThrowInputError(name_where, "a bone may not be called 'root'");
       for (const Bone& other : bones) {
-        if (other.name == bone.name) in.Fail("bone '" + bone.name + "' is defined twice");
+        if (other.name == bone.name) {
+          ThrowInputError(name_where, "bone '" + bone.name + "' is defined twice");
+        }
       }
       bones.push_back(std::move(bone));
     } else if (section == ":hierarchy") {

@@ -1,6 +1,7 @@
 #include "io/bvh.h"
 
 #include <cmath>
+#include <unordered_set>
 
 #include "io/error.h"
 #include "io/text_reader.h"
@@ -61,6 +62,7 @@ void ParseHierarchy(TokenCursor& cursor, Bvh* bvh) {
 
   // Iterative, so deeply nested input cannot overflow the stack.
   std::vector<int> open;  // joints whose '{' is open
+  std::unordered_set<std::string> names;
   bool expect_joint_name = true;
   bool end_site = false;
   while (true) {
@@ -72,7 +74,7 @@ void ParseHierarchy(TokenCursor& cursor, Bvh* bvh) {
       const std::string_view name = cursor.NextOrFail("a joint name");
       if (name == "{") in.Fail("expected a joint name before '{'");
       joint.name = std::string(name);
-      if (bvh->FindJoint(joint.name) >= 0) in.Fail("joint '" + joint.name + "' is defined twice");
+      if (!names.insert(joint.name).second) in.Fail("joint '" + joint.name + "' is defined twice");
     }
     token = cursor.NextOrFail("'{'");
     if (token != "{") in.Fail("expected '{' after the joint name, found " + Quote(token));

@@ -1,0 +1,162 @@
+#include "test_support.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace jgpm::test {
+namespace fs = std::filesystem;
+
+const fs::path& CmuRoot() {
+  static const fs::path root = [] {
+    std::vector<fs::path> tried;
+    if (const char* env = std::getenv("JGPM_DATA"); env && *env) tried.emplace_back(env);
+    tried.emplace_back(fs::path(JGPM_SOURCE_DIR) / "data" / "cmu");
+    tried.emplace_back(fs::path(JGPM_SOURCE_DIR) / ".." / "shared" / "data" / "cmu");
+    for (const fs::path& candidate : tried) {
+      if (fs::is_directory(candidate / "subjects")) return fs::canonical(candidate);
+    }
+    std::cerr << "test data missing: no CMU data root (tried $JGPM_DATA, "
+              << tried[tried.size() - 2] << ", " << tried.back() << ")\n";
+    std::exit(1);
+  }();
+  return root;
+}
+
+std::vector<TrialId> SplitTrials(const std::string& name) {
+  return ReadSplit(fs::path(JGPM_SPLITS_DIR) / (name + ".txt"));
+}
+
+std::vector<CmuTrial> AllCmuTrials() {
+  std::vector<CmuTrial> trials;
+  for (const auto& subject : fs::directory_iterator(CmuRoot() / "subjects")) {
+    const fs::path asf = subject.path() / (subject.path().filename().string() + ".asf");
+    for (const auto& file : fs::directory_iterator(subject.path())) {
+      if (file.path().extension() == ".amc") trials.push_back({asf, file.path()});
+    }
+  }
+  std::sort(trials.begin(), trials.end(),
+            [](const CmuTrial& a, const CmuTrial& b) { return a.amc < b.amc; });
+  return trials;
+}
+
+TempDir::TempDir() {
+  static std::atomic<int> counter{0};
+  std::random_device random;
+  path_ = fs::temp_directory_path() /
+          ("jgpm_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++) + "_" +
+           std::to_string(random()));
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
+  fs::remove_all(path_, ec);
+}
+
+fs::path TempDir::Write(const std::string& name, const std::string& text) const {
+  const fs::path file = path_ / name;
+  std::ofstream(file, std::ios::binary) << text;
+  return file;
+}
+
+std::string SmallAsfText() {
+  return R"(# test skeleton
+:version 1.10
+:name TEST
+:units
+  mass 1.0
+  length 0.45
+  angle deg
+:documentation
+  written by the jgpm tests
+:root
+   order TX TY TZ RX RY RZ
+   axis XYZ
+   position 0 0 0
+   orientation 0 0 0
+:bonedata
+  begin
+     id 1
+     name hip
+     direction 1 0 0
+     length 2
+     axis 0 0 0  XYZ
+  end
+  begin
+     id 2
+     name thigh
+     direction 0 -1 0
+     length 4
+     axis 0 0 90  XYZ
+    dof rx rz
+    limits (-160.0 20.0)
+           (-70.0 70.0)
+  end
+  begin
+     id 3
+     name shin
+     direction 0 -1 0
+     length 3
+     axis 0 0 0  XYZ
+    dof rx
+    limits (-10.0 170.0)
+  end
+  begin
+     id 4
+     name spine
+     direction 0 1 0
+     length 5
+     axis 0 0 0 XYZ
+    dof rx ry rz
+    limits (-inf inf)
+           (-30 30) (-30 30)
+  end
+:hierarchy
+  begin
+    root hip spine
+    hip thigh
+    thigh shin
+  end
+)";
+}
+
+int LineOf(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  if (at == std::string::npos) return 0;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in the text";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+int RunCommand(const std::string& command, std::string* out, std::string* err) {
+  const TempDir dir;
+  const fs::path out_file = dir.path() / "stdout", err_file = dir.path() / "stderr";
+  const std::string full = command + " >" + out_file.string() + " 2>" + err_file.string();
+  const int status = std::system(full.c_str());
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  *out = slurp(out_file);
+  *err = slurp(err_file);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+}  // namespace jgpm::test
