@@ -11,6 +11,7 @@
 #include "io/error.h"
 #include "io/skeleton.h"
 #include "io/split.h"
+#include "small_asf.h"
 
 namespace jgpm::test {
 
@@ -44,14 +45,6 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-// A small ASF written for the tests (not CMU data): root, a 2-bone leg with a bent local
-// axis, and a spine bone. Units: length 0.45 (CMU's), angles in degrees.
-//   root  order TX TY TZ RX RY RZ, axis XYZ
-//   hip    direction (1,0,0) length 2, axis 0 0 0 XYZ, no dofs
-//   thigh  direction (0,-1,0) length 4, axis 0 0 90 XYZ, dof rx rz
-//   shin   direction (0,-1,0) length 3, axis 0 0 0 XYZ, dof rx
-//   spine  direction (0,1,0) length 5, axis 0 0 0 XYZ, dof rx ry rz
-std::string SmallAsfText();
 
 // Runs `f` and expects an InputError whose message contains every one of `parts`.
 template <typename F>

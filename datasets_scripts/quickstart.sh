@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Quick start, step 1: install missing packages, build, and run the main job on its default
+# input: prepare the default training gait dataset (one gait cycle per walking trial of
+# datasets_scripts/splits/train.txt) and print its summary.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+datasets_scripts/install_deps.sh
+datasets_scripts/build.sh --target jgpm
+
+# Motion data: --data / $JGPM_DATA / ./data/cmu / ../shared/data/cmu; fetch it when online
+# and none is there.
+if [ -z "${JGPM_DATA:-}" ] && [ ! -d data/cmu/subjects ] && [ ! -d ../shared/data/cmu/subjects ]; then
+  datasets_scripts/fetch_cmu.sh
+fi
+./build/tracker/cli/jgpm data cycles --split train --out build/train_cycles.json
