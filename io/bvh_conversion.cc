@@ -116,8 +116,10 @@ Motion BvhToAcclaim(const Bvh& bvh, const Skeleton& skeleton, const std::string&
   const int num_bones = static_cast<int>(skeleton.bones.size());
   const double scale = skeleton.MillimetresPerUnit() / bvh.mm_per_unit;
   std::vector<int> joint_of_bone(num_bones);
+  std::vector<Eigen::Matrix3d> c(num_bones);  // each bone's C
   for (int b = 0; b < num_bones; ++b) {
     const Bone& bone = skeleton.bones[b];
+    c[b] = EulerToMatrix(bone.axis_order, bone.axis_deg);
     const int j = bvh.FindJoint(bone.name);
     if (j < 0) ThrowInputError(source, "no joint '" + bone.name + "' for the ASF bone of that name");
     joint_of_bone[b] = j;
@@ -160,9 +162,8 @@ Motion BvhToAcclaim(const Bvh& bvh, const Skeleton& skeleton, const std::string&
       const int j = joint_of_bone[b];
       const Eigen::Matrix3d local =
           bone.parent < 0 ? global[j] : global[joint_of_bone[bone.parent]].transpose() * global[j];
-      const Eigen::Matrix3d c = EulerToMatrix(bone.axis_order, bone.axis_deg);
       const double residual =
-          RotationToAngles(c.transpose() * local * c, RotationAxes(bone), &angles);
+          RotationToAngles(c[b].transpose() * local * c[b], RotationAxes(bone), &angles);
       if (residual > 1e-3) {
         ThrowInputError(source, "frame " + std::to_string(f + 1) + ": joint '" + bone.name +
                                     "' rotates " + std::to_string(residual) +

@@ -26,7 +26,7 @@ GaitDataset PrepareGaitDataset(const fs::path& data_root, const std::string& spl
                                const GaitProgress& progress) {
   GaitDataset dataset;
   dataset.split = split;
-  dataset.data_root = data_root.string();
+  dataset.data_root = fs::absolute(data_root).lexically_normal().string();
   dataset.options = options;
   for (const GaitJoint& joint : GaitJoints()) dataset.joint_names.emplace_back(joint.name);
   std::map<std::string, Skeleton> skeletons;  // by subject

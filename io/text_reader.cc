@@ -88,8 +88,6 @@ LineReader::LineReader(std::string_view text, std::string source)
 
 bool LineReader::Next() {
   if (pos_ >= text_.size()) return false;
-  previous_pos_ = line_start_;
-  line_start_ = pos_;
   size_t end = text_.find('\n', pos_);
   if (end == std::string_view::npos) end = text_.size();
   size_t stop = end;
@@ -98,14 +96,6 @@ bool LineReader::Next() {
   pos_ = end + 1;
   ++line_number_;
   return true;
-}
-
-void LineReader::Unread() {
-  JGPM_CHECK(line_number_ > 0);
-  pos_ = line_start_;
-  line_start_ = previous_pos_;
-  --line_number_;
-  line_ = {};
 }
 
 std::string LineReader::Where() const {

@@ -34,8 +34,6 @@ class LineReader {
 
   // Advances to the next line; false at the end of the text.
   bool Next();
-  // Steps back one line so the next Next() returns the current line again (one level).
-  void Unread();
   std::string_view line() const { return line_; }
   int line_number() const { return line_number_; }
   const std::string& source() const { return source_; }
@@ -55,8 +53,6 @@ class LineReader {
   std::string_view text_;
   std::string source_;
   size_t pos_ = 0;
-  size_t line_start_ = 0;
-  size_t previous_pos_ = 0;
   std::string_view line_;
   int line_number_ = 0;
 };

@@ -44,28 +44,72 @@ TEST(JgpmCli, BadOptionsGiveOneLineAndExit2) {
   }
 }
 
-// Malformed files: one line on stderr naming file:line, exit 1, for each parser.
-TEST(JgpmCli, MalformedFilesNameTheFileAndLine) {
+// Each kind of bad input the issue lists, through the command: exit 1, one line on stderr
+// naming file:line and what was expected, and no output file.
+struct BadFile {
+  std::string name;
+  std::string file;      // written into a temporary folder with the small skeleton s.asf
+  std::string content;
+  std::string expected;  // after "<folder>/<file>:"
+};
+void PrintTo(const BadFile& c, std::ostream* os) { *os << c.name; }
+
+const char kAmcHeader[] = ":FULLY-SPECIFIED\n:DEGREES\n";
+const char kBvhHead[] = "HIERARCHY\nROOT r\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Xrotation\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n";
+
+class JgpmCliBadFile : public testing::TestWithParam<BadFile> {};
+
+TEST_P(JgpmCliBadFile, OneLineNamingFileAndLine) {
+  const BadFile& c = GetParam();
   test::TempDir dir;
-  const fs::path asf = dir.Write("s_01.asf", test::Replace(test::SmallAsfText(), "length 4", "length x"));
-  const fs::path good_asf = dir.Write("s.asf", test::SmallAsfText());
-  const fs::path amc = dir.Write("s_01.amc", ":FULLY-SPECIFIED\n:DEGREES\n1\nroot 0 0 0 0 0 0\nthigh 1\n");
-  const fs::path bvh = dir.Write("b.bvh", "HIERARCHY\nROOT r\n{\nOFFSET 0 0\n}\n");
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"data info " + asf.string(), asf.string() + ":" + std::to_string(test::LineOf(test::SmallAsfText(), "length 4"))},
-      {"data info " + amc.string(), amc.string() + ":5"},
-      {"data info " + bvh.string(), bvh.string() + ":5"},
-      {"data info " + dir.path().string() + "/none.bvh", "no such file"},
-      {"data info " + dir.path().string(), "is a directory"},
-      {"data convert " + amc.string() + " --out " + (dir.path() / "o.bvh").string(), amc.string() + ":5"},
-  };
-  for (const auto& [arguments, expected] : cases) {
+  dir.Write("s.asf", test::SmallAsfText());
+  const fs::path file = dir.Write(c.file, c.content);
+  const fs::path out = dir.path() / (file.extension() == ".bvh" ? "out.amc" : "out.bvh");
+  for (const std::string command : {"data info ", "data convert "}) {
+    if (file.extension() == ".asf" && command == "data convert ") continue;
+    std::string arguments = command + file.string();
+    if (file.extension() != ".asf") arguments += " --asf " + (dir.path() / "s.asf").string();
+    if (command == "data convert ") arguments += " --out " + out.string();
     const Result r = Jgpm(arguments);
     EXPECT_EQ(r.status, 1) << arguments;
     EXPECT_EQ(Lines(r.err), 1) << r.err;
-    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err << "lacks " << expected;
+    EXPECT_NE(r.err.find(file.string() + ":" + c.expected), std::string::npos)
+        << r.err << "lacks " << file.string() << ":" << c.expected;
+    EXPECT_FALSE(fs::exists(out));
   }
-  EXPECT_FALSE(fs::exists(dir.path() / "o.bvh"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, JgpmCliBadFile,
+    testing::Values(
+        BadFile{"AsfTruncated", "t.asf", std::string(test::SmallAsfText()).substr(0, std::string(test::SmallAsfText()).find("    limits (-10.0")),
+                std::to_string(test::LineOf(test::SmallAsfText(), "id 3") - 1) + ": file ends inside a bone block"},
+        BadFile{"AsfNan", "n.asf", test::Replace(test::SmallAsfText(), "length 4", "length nan"),
+                std::to_string(test::LineOf(test::SmallAsfText(), "length 4")) + ": expected a finite number for length"},
+        BadFile{"AsfEmpty", "e.asf", "", "1: file is empty"},
+        BadFile{"AmcTruncated", "t.amc", std::string(kAmcHeader) + "1\nroot 0 0 0 0 0 0\nthigh 1 2\n", "5: file ends inside frame 1"},
+        BadFile{"AmcWrongCount", "w.amc", std::string(kAmcHeader) + "1\nroot 0 0 0 0 0\n", "4: expected 6 value(s) for bone 'root'"},
+        BadFile{"AmcUnknownBone", "u.amc", std::string(kAmcHeader) + "1\nlowerback 0 0 0\n", "4: unknown bone 'lowerback'"},
+        BadFile{"AmcNan", "n.amc", std::string(kAmcHeader) + "1\nroot 0 0 nan 0 0 0\n", "4: expected a finite number for root.tz"},
+        BadFile{"AmcInf", "i.amc", std::string(kAmcHeader) + "1\nroot 0 0 0 0 -inf 0\n", "4: expected a finite number for root.ry"},
+        BadFile{"AmcMissingDegrees", "d.amc", ":FULLY-SPECIFIED\n1\n", "2: expected :DEGREES"},
+        BadFile{"AmcMissingFullySpecified", "f.amc", ":DEGREES\n1\n", "2: expected :FULLY-SPECIFIED"},
+        BadFile{"AmcOfAnotherSkeleton", "o.amc", std::string(kAmcHeader) + "1\nroot 0 0 0 0 0 0\nthigh 1 2\nshin 3 4\n", "6: expected 1 value(s) for bone 'shin'"},
+        BadFile{"AmcEmpty", "e.amc", "\n", "1: file is empty"},
+        BadFile{"BvhBadHierarchy", "h.bvh", test::Replace(kBvhHead, "}\nMOTION", "MOTION"), "6: expected '}' to close the hierarchy"},
+        BadFile{"BvhTruncated", "t.bvh", std::string(kBvhHead) + "1\n", "10: file ends after 1 of 2 frames"},
+        BadFile{"BvhWrongCount", "w.bvh", std::string(kBvhHead) + "1\n1 2\n", "11: expected 1 channel values in frame 2, found 2"},
+        BadFile{"BvhEmpty", "e.bvh", " ", "1: file is empty"}),
+    [](const testing::TestParamInfo<BadFile>& info) { return info.param.name; });
+
+TEST(JgpmCli, MissingFilesAndDirectories) {
+  test::TempDir dir;
+  Result r = Jgpm("data info " + (dir.path() / "none.bvh").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("none.bvh: no such file"), std::string::npos) << r.err;
+  r = Jgpm("data info " + dir.path().string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(dir.path().string() + ": is a directory"), std::string::npos) << r.err;
 }
 
 TEST(JgpmCli, InfoAndConvertOnACmuTrial) {

@@ -52,16 +52,6 @@ TEST(LineReader, CountsLinesAndDropsCarriageReturns) {
   EXPECT_EQ(in.Where(), "src:4");
 }
 
-TEST(LineReader, UnreadReturnsTheSameLine) {
-  LineReader in("a\nb\nc\n", "src");
-  ASSERT_TRUE(in.Next());
-  ASSERT_TRUE(in.Next());
-  in.Unread();
-  ASSERT_TRUE(in.Next());
-  EXPECT_EQ(in.line(), "b");
-  EXPECT_EQ(in.line_number(), 2);
-}
-
 TEST(LineReader, ParseDoubleRejectsNonFiniteAndGarbage) {
   LineReader in("x\n", "f.amc");
   in.Next();
