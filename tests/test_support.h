@@ -75,6 +75,15 @@ struct MalformedCase {
   std::string line_needle;
   std::string phrase;
 };
+// Applies the case to `valid_text` and expects `parse(text, source)` to fail as described.
+template <typename Parse>
+void ExpectMalformed(const MalformedCase& c, const std::string& valid_text,
+                     const std::string& source, Parse parse) {
+  const std::string text = Replace(valid_text, c.from, c.to);
+  std::string where = source;
+  if (!c.line_needle.empty()) where += ":" + std::to_string(LineOf(text, c.line_needle));
+  ExpectInputError([&] { parse(text, source); }, {where, c.phrase});
+}
 inline void PrintTo(const MalformedCase& c, std::ostream* os) { *os << c.name; }
 inline std::string CaseName(const testing::TestParamInfo<MalformedCase>& info) {
   return info.param.name;

@@ -123,11 +123,8 @@ TEST(Amc, EveryTruncationIsAnErrorUnlessAtAFrameEnd) {
 class AmcMalformed : public testing::TestWithParam<MalformedCase> {};
 
 TEST_P(AmcMalformed, NamesFileLineAndExpectation) {
-  const MalformedCase& c = GetParam();
-  const std::string text = test::Replace(kSmallAmc, c.from, c.to);
-  std::string where = "bad.amc";
-  if (!c.line_needle.empty()) where += ":" + std::to_string(test::LineOf(text, c.line_needle));
-  ExpectInputError([&] { ParseAmc(text, "bad.amc", Small()); }, {where, c.phrase});
+  test::ExpectMalformed(GetParam(), kSmallAmc, "bad.amc",
+                        [](const std::string& text, const std::string& source) { ParseAmc(text, source, Small()); });
 }
 
 INSTANTIATE_TEST_SUITE_P(

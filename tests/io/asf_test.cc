@@ -108,11 +108,8 @@ TEST(Asf, EmptyAndDirectoryInputs) {
 class AsfMalformed : public testing::TestWithParam<MalformedCase> {};
 
 TEST_P(AsfMalformed, NamesFileLineAndExpectation) {
-  const MalformedCase& c = GetParam();
-  const std::string text = test::Replace(test::SmallAsfText(), c.from, c.to);
-  std::string where = "bad.asf";
-  if (!c.line_needle.empty()) where += ":" + std::to_string(test::LineOf(text, c.line_needle));
-  ExpectInputError([&] { ParseAsf(text, "bad.asf"); }, {where, c.phrase});
+  test::ExpectMalformed(GetParam(), test::SmallAsfText(), "bad.asf",
+                        [](const std::string& text, const std::string& source) { ParseAsf(text, source); });
 }
 
 INSTANTIATE_TEST_SUITE_P(

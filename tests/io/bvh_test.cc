@@ -127,11 +127,8 @@ TEST(Bvh, EveryTruncationIsAnErrorUnlessInTheLastNumber) {
 class BvhMalformed : public testing::TestWithParam<MalformedCase> {};
 
 TEST_P(BvhMalformed, NamesFileLineAndExpectation) {
-  const MalformedCase& c = GetParam();
-  const std::string text = test::Replace(kSmallBvh, c.from, c.to);
-  std::string where = "bad.bvh";
-  if (!c.line_needle.empty()) where += ":" + std::to_string(test::LineOf(text, c.line_needle));
-  ExpectInputError([&] { ParseBvh(text, "bad.bvh"); }, {where, c.phrase});
+  test::ExpectMalformed(GetParam(), kSmallBvh, "bad.bvh",
+                        [](const std::string& text, const std::string& source) { ParseBvh(text, source); });
 }
 
 INSTANTIATE_TEST_SUITE_P(
