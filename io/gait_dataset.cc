@@ -4,11 +4,10 @@
 #include <cstdio>
 #include <map>
 
-#include <nlohmann/json.hpp>
-
 #include "io/amc.h"
 #include "io/asf.h"
 #include "io/error.h"
+#include "io/json_file.h"
 #include "io/text_reader.h"
 
 namespace jgpm {
@@ -102,55 +101,16 @@ std::string FormatGaitDatasetJson(const GaitDataset& dataset) {
                       {"poses", poses}});
   }
   root["trials"] = trials;
-  return root.dump(1) + "\n";
+  return FormatJson(root);
 }
 
 void WriteGaitDataset(const fs::path& path, const GaitDataset& dataset) {
   WriteTextFileAtomic(path, FormatGaitDatasetJson(dataset));
 }
 
-namespace {
-
-// Typed access to a JSON field with errors that name the file and the field.
-class JsonReader {
- public:
-  explicit JsonReader(std::string source) : source_(std::move(source)) {}
-
-  const json& Field(const json& object, const std::string& key, const std::string& where) const {
-    if (!object.is_object() || !object.contains(key)) Fail(where + key, "missing");
-    return object.at(key);
-  }
-  template <typename T>
-  T Get(const json& object, const std::string& key, const std::string& where) const {
-    const json& value = Field(object, key, where);
-    try {
-      T result = value.get<T>();
-      if constexpr (std::is_floating_point_v<T>) {
-        if (!std::isfinite(result)) Fail(where + key, "expected a finite number");
-      }
-      return result;
-    } catch (const json::exception&) {
-      Fail(where + key, std::string("has the wrong type (") + value.type_name() + ")");
-    }
-  }
-  [[noreturn]] void Fail(const std::string& field, const std::string& what) const {
-    ThrowInputError(source_, "field '" + field + "' " + what);
-  }
-
- private:
-  std::string source_;
-};
-
-}  // namespace
 
 GaitDataset ReadGaitDataset(const fs::path& path) {
-  const std::string text = ReadTextFile(path, "a gait dataset (JSON from `jgpm data cycles`)");
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    ThrowInputError(path.string(), std::string("invalid JSON: ") + e.what());
-  }
+  const json root = ReadJsonFile(path, "a gait dataset (JSON from `jgpm data cycles`)");
   const JsonReader in(path.string());
   if (!root.is_object() || in.Get<std::string>(root, "format", "") != "jgpm-gait-dataset") {
     ThrowInputError(path.string(), "not a jgpm gait dataset (expected \"format\": \"jgpm-gait-dataset\")");

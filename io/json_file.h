@@ -1,0 +1,58 @@
+// JSON result files: readable formatting and typed reading with errors that name the file
+// and the field. Shared by every file format of ours that is JSON (datasets, later models).
+#pragma once
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <type_traits>
+
+#include <nlohmann/json.hpp>
+
+#include "io/error.h"
+
+namespace jgpm {
+
+// Indented JSON, except that arrays of numbers/strings/booleans stay on one line, so a
+// matrix reads as one row per line. Numbers keep full round-trip precision.
+std::string FormatJson(const nlohmann::json& value);
+
+// Reads and parses a JSON file; InputError with the parser's line and column otherwise.
+nlohmann::json ReadJsonFile(const std::filesystem::path& path, const std::string& what);
+
+// Typed access to fields of a parsed file. `where` prefixes the key in messages, e.g.
+// "trials[3]." gives "field 'trials[3].frames' missing".
+class JsonReader {
+ public:
+  explicit JsonReader(std::string source) : source_(std::move(source)) {}
+
+  const nlohmann::json& Field(const nlohmann::json& object, const std::string& key,
+                              const std::string& where) const {
+    if (!object.is_object() || !object.contains(key)) Fail(where + key, "missing");
+    return object.at(key);
+  }
+
+  // Numbers must be finite (JSON writers turn NaN into null, which fails as a wrong type).
+  template <typename T>
+  T Get(const nlohmann::json& object, const std::string& key, const std::string& where) const {
+    const nlohmann::json& value = Field(object, key, where);
+    try {
+      T result = value.get<T>();
+      if constexpr (std::is_floating_point_v<T>) {
+        if (!std::isfinite(result)) Fail(where + key, "expected a finite number");
+      }
+      return result;
+    } catch (const nlohmann::json::exception&) {
+      Fail(where + key, std::string("has the wrong type (") + value.type_name() + ")");
+    }
+  }
+
+  [[noreturn]] void Fail(const std::string& field, const std::string& what) const {
+    ThrowInputError(source_, "field '" + field + "' " + what);
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace jgpm
