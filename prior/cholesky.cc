@@ -1,0 +1,76 @@
+#include "prior/cholesky.h"
+
+#include <cmath>
+
+#include <lapacke.h>
+
+#include "io/error.h"
+
+extern "C" void openblas_set_num_threads(int num_threads);
+
+namespace jgpm {
+
+bool Cholesky::Compute(const Eigen::MatrixXd& k, double max_relative_jitter) {
+  JGPM_CHECK(k.rows() == k.cols());
+  ok_ = false;
+  jitter_ = 0;
+  const int n = static_cast<int>(k.rows());
+  if (!k.allFinite()) {
+    why_ = "kernel matrix holds NaN or inf";
+    return false;
+  }
+  const double mean_diagonal = n > 0 ? k.diagonal().mean() : 1.0;
+  if (!(mean_diagonal > 0)) {
+    why_ = "kernel matrix has a non-positive mean diagonal";
+    return false;
+  }
+  const double max_jitter = max_relative_jitter * mean_diagonal;
+  for (double jitter = 0; jitter <= max_jitter; jitter = jitter == 0 ? 1e-9 * mean_diagonal : jitter * 10) {
+    factor_ = k;
+    factor_.diagonal().array() += jitter;
+    if (n == 0 || LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, factor_.data(), n) == 0) {
+      jitter_ = jitter;
+      ok_ = true;
+      why_.clear();
+      return true;
+    }
+  }
+  why_ = "kernel matrix not positive definite even with jitter " + std::to_string(max_jitter);
+  return false;
+}
+
+double Cholesky::LogDeterminant() const {
+  JGPM_CHECK(ok_);
+  return 2.0 * factor_.diagonal().array().log().sum();
+}
+
+Eigen::MatrixXd Cholesky::Solve(const Eigen::MatrixXd& b) const {
+  JGPM_CHECK(ok_ && b.rows() == factor_.rows());
+  Eigen::MatrixXd x = b;
+  const int n = size();
+  if (n > 0 && b.cols() > 0) {
+    const int info = LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', n, static_cast<int>(b.cols()),
+                                    factor_.data(), n, x.data(), n);
+    JGPM_CHECK(info == 0);
+  }
+  return x;
+}
+
+Eigen::MatrixXd Cholesky::Inverse() const {
+  JGPM_CHECK(ok_);
+  Eigen::MatrixXd inverse = factor_;
+  const int n = size();
+  if (n > 0) {
+    const int info = LAPACKE_dpotri(LAPACK_COL_MAJOR, 'L', n, inverse.data(), n);
+    JGPM_CHECK(info == 0);
+  }
+  // dpotri fills the lower triangle; mirror it.
+  inverse.triangularView<Eigen::StrictlyUpper>() = inverse.transpose();
+  return inverse;
+}
+
+void SetLinearAlgebraThreads(int threads) {
+  if (threads > 0) openblas_set_num_threads(threads);
+}
+
+}  // namespace jgpm

@@ -1,0 +1,46 @@
+// Cholesky factorisation of kernel matrices with adaptive jitter, on LAPACK (OpenBLAS).
+//
+// When K is not numerically positive definite (duplicate latent points, a vanishing noise
+// term), jitter is added to its diagonal: first 1e-9 times the mean diagonal, then ten
+// times more each try, up to max_relative_jitter. The jitter used is reported so training
+// summaries can show it. Never forms an inverse to solve a system; Inverse() exists only
+// because the gradient of ln|K| needs every entry of K^-1.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+namespace jgpm {
+
+class Cholesky {
+ public:
+  // Factorises K (only its lower triangle is read). False when K holds NaN/inf or no
+  // jitter up to max_relative_jitter * mean(diag K) makes it positive definite; why() says
+  // which.
+  bool Compute(const Eigen::MatrixXd& k, double max_relative_jitter = 1e-2);
+
+  bool ok() const { return ok_; }
+  const std::string& why() const { return why_; }
+  // Jitter added to the diagonal (0 when K factorised as it was).
+  double jitter() const { return jitter_; }
+  int size() const { return static_cast<int>(factor_.rows()); }
+
+  // ln |K + jitter I|.
+  double LogDeterminant() const;
+  // (K + jitter I)^-1 b.
+  Eigen::MatrixXd Solve(const Eigen::MatrixXd& b) const;
+  // (K + jitter I)^-1 as a full symmetric matrix, from the factor (LAPACK dpotri).
+  Eigen::MatrixXd Inverse() const;
+
+ private:
+  Eigen::MatrixXd factor_;  // lower triangle holds L
+  double jitter_ = 0;
+  bool ok_ = false;
+  std::string why_;
+};
+
+// Threads OpenBLAS may use (the `--threads` option); 0 leaves its default.
+void SetLinearAlgebraThreads(int threads);
+
+}  // namespace jgpm

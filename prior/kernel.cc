@@ -1,0 +1,61 @@
+#include "prior/kernel.h"
+
+#include "io/error.h"
+
+namespace jgpm {
+
+Kernel::Kernel(Kind kind, const Eigen::VectorXd& log_params)
+    : kind_(kind), log_params_(log_params), p_(log_params.array().exp()) {
+  JGPM_CHECK(log_params.size() == NumParams());
+}
+
+Eigen::MatrixXd Kernel::RbfFactor(const Eigen::MatrixXd& x) const {
+  const Eigen::VectorXd norms = x.rowwise().squaredNorm();
+  Eigen::MatrixXd d2 = -2.0 * x * x.transpose();
+  d2.colwise() += norms;
+  d2.rowwise() += norms.transpose();
+  return (-0.5 * inverse_width() * d2.array().max(0.0)).exp().matrix();
+}
+
+Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x) const {
+  Eigen::MatrixXd k = signal_variance() * RbfFactor(x);
+  if (kind_ == Kind::kRbfLinear) k.noalias() += linear_variance() * x * x.transpose();
+  k.diagonal().array() += noise_variance();
+  return k;
+}
+
+Eigen::VectorXd Kernel::Cross(const Eigen::MatrixXd& x, const Eigen::Vector3d& x_star) const {
+  const Eigen::VectorXd d2 = (x.rowwise() - x_star.transpose()).rowwise().squaredNorm();
+  Eigen::VectorXd k = signal_variance() * (-0.5 * inverse_width() * d2.array()).exp().matrix();
+  if (kind_ == Kind::kRbfLinear) k.noalias() += linear_variance() * x * x_star;
+  return k;
+}
+
+double Kernel::Self(const Eigen::Vector3d& x_star) const {
+  return signal_variance() + linear_variance() * x_star.squaredNorm();
+}
+
+void Kernel::AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g, Eigen::MatrixXd* dx,
+                         Eigen::VectorXd* dlog_params) const {
+  JGPM_CHECK(g.rows() == x.rows() && g.cols() == x.rows() && dx->rows() == x.rows());
+  JGPM_CHECK(dlog_params->size() == NumParams());
+  const Eigen::MatrixXd rbf = signal_variance() * RbfFactor(x);
+  // H = G o K_rbf. dK_ij/dx_i = -b2 K_rbf_ij (x_i - x_j), and K is symmetric, so
+  // dL/dx_i = -2 b2 (x_i sum_j H_ij - (H X)_i).
+  const Eigen::MatrixXd h = g.cwiseProduct(rbf);
+  const Eigen::VectorXd h_rows = h.rowwise().sum();
+  dx->noalias() += -2.0 * inverse_width() * (h_rows.asDiagonal() * x - h * x);
+  (*dlog_params)[0] += h.sum();  // d/d log b1
+  // d/d log b2 = -b2/2 sum_ij H_ij |x_i - x_j|^2 = -b2 (sum_i h_i |x_i|^2 - sum_ij H_ij x_i.x_j).
+  const Eigen::VectorXd norms = x.rowwise().squaredNorm();
+  (*dlog_params)[1] += -inverse_width() * (h_rows.dot(norms) - (x.transpose() * h * x).trace());
+  if (kind_ == Kind::kRbfLinear) {
+    const Eigen::MatrixXd gx = g * x;
+    dx->noalias() += 2.0 * linear_variance() * gx;
+    (*dlog_params)[2] += linear_variance() * (x.transpose() * gx).trace();
+  }
+  // Noise 1/b: d(1/b)/d log b = -1/b.
+  (*dlog_params)[NumParams() - 1] += -noise_variance() * g.trace();
+}
+
+}  // namespace jgpm

@@ -1,0 +1,211 @@
+#include "prior/objective.h"
+
+#include <cmath>
+
+#include "io/error.h"
+#include "prior/cholesky.h"
+#include "prior/kernel.h"
+
+namespace jgpm {
+namespace {
+
+constexpr double kLog2Pi = 1.8378770664093453;
+
+}  // namespace
+
+int GpParameters::Size() const {
+  return static_cast<int>(x.size() + log_beta.size() + log_alpha.size() + log_w.size());
+}
+
+void GpParameters::Pack(double* out) const {
+  // x row by row, so a point's three coordinates are adjacent.
+  for (int i = 0; i < x.rows(); ++i) {
+    for (int d = 0; d < x.cols(); ++d) *out++ = x(i, d);
+  }
+  for (const Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
+    for (int k = 0; k < v->size(); ++k) *out++ = (*v)[k];
+  }
+}
+
+void GpParameters::Unpack(const double* in) {
+  for (int i = 0; i < x.rows(); ++i) {
+    for (int d = 0; d < x.cols(); ++d) x(i, d) = *in++;
+  }
+  for (Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
+    for (int k = 0; k < v->size(); ++k) (*v)[k] = *in++;
+  }
+}
+
+GpParameters GpParameters::ZerosLike() const {
+  GpParameters zero;
+  zero.x = Eigen::MatrixXd::Zero(x.rows(), x.cols());
+  zero.log_beta = Eigen::VectorXd::Zero(log_beta.size());
+  zero.log_alpha = Eigen::VectorXd::Zero(log_alpha.size());
+  zero.log_w = Eigen::VectorXd::Zero(log_w.size());
+  return zero;
+}
+
+GpObjective::GpObjective(Eigen::MatrixXd y, std::vector<Sequence> sequences,
+                         const Topology* topology, const ObjectiveTerms& terms)
+    : y_(std::move(y)), sequences_(std::move(sequences)), topology_(topology), terms_(terms) {
+  JGPM_CHECK(!terms_.topology || topology_ != nullptr);
+  sequence_of_.assign(y_.rows(), -1);
+  for (size_t s = 0; s < sequences_.size(); ++s) {
+    for (int t = 0; t < sequences_[s].length; ++t) {
+      JGPM_CHECK(sequences_[s].first + t < y_.rows());
+      sequence_of_[sequences_[s].first + t] = static_cast<int>(s);
+    }
+  }
+}
+
+ObjectiveValue GpObjective::Evaluate(const GpParameters& p, GpParameters* gradient) const {
+  std::vector<int> all(NumPoints());
+  for (int i = 0; i < NumPoints(); ++i) all[i] = i;
+  return EvaluateSubset(p, all, gradient);
+}
+
+ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vector<int>& subset,
+                                           GpParameters* gradient) const {
+  JGPM_CHECK(p.x.rows() == NumPoints() && p.x.cols() == 3 && p.log_beta.size() == 3);
+  JGPM_CHECK(p.log_alpha.size() == (terms_.dynamics ? 4 : 0));
+  JGPM_CHECK(p.log_w.size() == (terms_.channel_scales ? NumChannels() : 0));
+  ObjectiveValue value;
+  if (gradient) *gradient = p.ZerosLike();
+  const int m = static_cast<int>(subset.size());
+  const int d = NumChannels();
+  std::vector<int> position(NumPoints(), -1);  // row -> index in subset
+  for (int k = 0; k < m; ++k) position[subset[k]] = k;
+
+  Eigen::MatrixXd x(m, 3);
+  Eigen::MatrixXd z(m, d);
+  const Eigen::VectorXd w = p.log_w.size() ? Eigen::VectorXd(p.log_w.array().exp())
+                                           : Eigen::VectorXd::Ones(d);
+  for (int k = 0; k < m; ++k) {
+    x.row(k) = p.x.row(subset[k]);
+    z.row(k) = y_.row(subset[k]).cwiseProduct(w.transpose());
+  }
+  Eigen::MatrixXd dx = Eigen::MatrixXd::Zero(m, 3);
+
+  // Mapping: G = dL/dK = 1/2 (D K^-1 - A A^T) with A = K^-1 Z.
+  {
+    const Kernel kernel(Kernel::Kind::kRbf, p.log_beta);
+    Cholesky chol;
+    if (!chol.Compute(kernel.Matrix(x))) {
+      value.why = "mapping kernel: " + chol.why();
+      return value;
+    }
+    value.jitter = std::max(value.jitter, chol.jitter());
+    const Eigen::MatrixXd a = chol.Solve(z);
+    const Eigen::VectorXd za = (z.cwiseProduct(a)).colwise().sum().transpose();  // per channel
+    value.mapping = 0.5 * d * chol.LogDeterminant() + 0.5 * za.sum() - m * p.log_w.sum() +
+                    0.5 * m * d * kLog2Pi;
+    if (gradient) {
+      Eigen::MatrixXd g = 0.5 * d * chol.Inverse();
+      g.noalias() -= 0.5 * a * a.transpose();
+      Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
+      kernel.AddGradient(x, g, &dx, &dbeta);
+      gradient->log_beta += dbeta;
+      if (terms_.channel_scales) gradient->log_w += za - Eigen::VectorXd::Constant(d, m);
+    }
+  }
+
+  if (terms_.latent_prior) {
+    value.latent = 0.5 * x.squaredNorm() + 0.5 * m * 3 * kLog2Pi;
+    if (gradient) dx += x;
+  }
+
+  // Dynamics over consecutive pairs (t, t+1) of a sequence with both points in the subset.
+  if (terms_.dynamics) {
+    std::vector<int> in, out, first;
+    for (int k = 0; k < m; ++k) {
+      const int row = subset[k];
+      const int s = sequence_of_[row];
+      if (s < 0) continue;
+      if (row == sequences_[s].first) first.push_back(k);
+      if (row + 1 < sequences_[s].first + sequences_[s].length && position[row + 1] >= 0) {
+        in.push_back(k);
+        out.push_back(position[row + 1]);
+      }
+    }
+    const double lambda = terms_.dynamics_weight;
+    double dynamics = 0;
+    for (int k : first) {
+      dynamics += 0.5 * x.row(k).squaredNorm() + 0.5 * 3 * kLog2Pi;
+      if (gradient) dx.row(k) += lambda * x.row(k);
+    }
+    if (!in.empty()) {
+      const int pairs = static_cast<int>(in.size());
+      Eigen::MatrixXd x_in(pairs, 3), x_out(pairs, 3);
+      for (int k = 0; k < pairs; ++k) {
+        x_in.row(k) = x.row(in[k]);
+        x_out.row(k) = x.row(out[k]);
+      }
+      const Kernel kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
+      Cholesky chol;
+      if (!chol.Compute(kernel.Matrix(x_in))) {
+        value.why = "dynamics kernel: " + chol.why();
+        return value;
+      }
+      value.jitter = std::max(value.jitter, chol.jitter());
+      const Eigen::MatrixXd b = chol.Solve(x_out);
+      dynamics += 1.5 * chol.LogDeterminant() + 0.5 * x_out.cwiseProduct(b).sum() +
+                  0.5 * pairs * 3 * kLog2Pi;
+      if (gradient) {
+        Eigen::MatrixXd g = 1.5 * chol.Inverse();
+        g.noalias() -= 0.5 * b * b.transpose();
+        g *= lambda;
+        Eigen::MatrixXd dx_in = Eigen::MatrixXd::Zero(pairs, 3);
+        Eigen::VectorXd dalpha = Eigen::VectorXd::Zero(4);
+        kernel.AddGradient(x_in, g, &dx_in, &dalpha);
+        gradient->log_alpha += dalpha;
+        for (int k = 0; k < pairs; ++k) {
+          dx.row(in[k]) += dx_in.row(k);
+          dx.row(out[k]) += lambda * b.row(k);
+        }
+      }
+    }
+    value.dynamics = lambda * dynamics;
+  }
+
+  if (terms_.topology) {
+    const double scale = 1.0 / terms_.topology_sigma2;
+    double energy = 0;
+    for (int k = 0; k < m; ++k) {
+      const int i = subset[k];
+      const std::vector<int>& nb = topology_->neighbours[i];
+      for (int dim = 0; dim < 3; ++dim) {
+        double r = p.x(i, dim);
+        for (size_t j = 0; j < nb.size(); ++j) r -= topology_->weights[dim](i, j) * p.x(nb[j], dim);
+        energy += r * r;
+        if (gradient) {
+          dx(k, dim) += 2 * scale * r;
+          for (size_t j = 0; j < nb.size(); ++j) {
+            if (position[nb[j]] >= 0) {
+              dx(position[nb[j]], dim) -= 2 * scale * r * topology_->weights[dim](i, j);
+            }
+          }
+        }
+      }
+    }
+    value.topology = scale * energy;
+  }
+
+  // Hyper-parameter priors p(b) ~ prod 1/b_i, p(a) ~ prod 1/a_i, p(W) Gaussian.
+  value.priors = p.log_beta.sum() + p.log_alpha.sum();
+  if (terms_.channel_scales) {
+    const double kappa2 = terms_.scale_prior_width * terms_.scale_prior_width;
+    value.priors += 0.5 * w.squaredNorm() / kappa2;
+    if (gradient) gradient->log_w += (w.array().square() / kappa2).matrix();
+  }
+  if (gradient) {
+    gradient->log_beta.array() += 1.0;
+    gradient->log_alpha.array() += 1.0;
+    for (int k = 0; k < m; ++k) gradient->x.row(subset[k]) = dx.row(k);
+  }
+  value.total = value.mapping + value.latent + value.dynamics + value.topology + value.priors;
+  value.ok = std::isfinite(value.total);
+  if (!value.ok) value.why = "objective is not finite";
+  return value;
+}
+
+}  // namespace jgpm

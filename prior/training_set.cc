@@ -1,0 +1,51 @@
+#include "prior/training_set.h"
+
+#include "io/error.h"
+
+namespace jgpm {
+
+Eigen::MatrixXd ScaleGait(const Eigen::MatrixXd& cycle, double scale) {
+  const Eigen::RowVectorXd mean = cycle.colwise().mean();
+  return (scale * (cycle.rowwise() - mean)).rowwise() + mean;
+}
+
+TrainingSet MakeTrainingSet(const GaitDataset& dataset, const std::vector<double>& layer_scales) {
+  if (layer_scales.empty()) ThrowInputError("--scales", "expected at least one layer scale");
+  for (double s : layer_scales) {
+    if (!(s > 0)) ThrowInputError("--scales", "layer scales must be > 0");
+  }
+  TrainingSet set;
+  set.channel_names = dataset.channel_names;
+  set.channel_joints = dataset.channel_joints;
+  set.layer_scales = layer_scales;
+  set.poses_per_gait = dataset.options.poses_per_cycle;
+  std::vector<const GaitCycle*> cycles;
+  for (const GaitTrial& trial : dataset.trials) {
+    if (!trial.cycle.clean) continue;
+    set.gait_ids.push_back(trial.id.name);
+    cycles.push_back(&trial.cycle);
+  }
+  if (cycles.empty()) ThrowInputError("dataset " + dataset.split, "has no clean gait cycle to train on");
+  const int poses = set.poses_per_gait;
+  const int d = static_cast<int>(set.channel_names.size());
+  const int n = set.NumLayers() * set.NumGaits() * poses;
+  set.y_deg.resize(n, d);
+  set.points.resize(n);
+  for (int layer = 0; layer < set.NumLayers(); ++layer) {
+    for (int gait = 0; gait < set.NumGaits(); ++gait) {
+      const Eigen::MatrixXd scaled = ScaleGait(cycles[gait]->poses, layer_scales[layer]);
+      for (int pose = 0; pose < poses; ++pose) {
+        const int row = set.Row(layer, gait, pose);
+        set.y_deg.row(row) = scaled.row(pose);
+        set.points[row] = {layer, gait, pose};
+      }
+    }
+  }
+  set.mean = set.y_deg.colwise().mean();
+  const Eigen::MatrixXd centred = set.y_deg.rowwise() - set.mean;
+  set.scale = (centred.colwise().squaredNorm() / n).array().sqrt().max(1e-3).matrix();
+  set.y = centred.array().rowwise() / set.scale.array();
+  return set;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,150 @@
+#include "prior/objective.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "prior/model_kind.h"
+#include "prior/training_set.h"
+#include "prior_test_support.h"
+
+namespace jgpm {
+namespace {
+
+// Every GP model kind's full objective, and its restriction to a subset, against central
+// finite differences of the value, for every latent coordinate and hyper-parameter.
+class ObjectiveGradient : public testing::TestWithParam<ModelKind> {};
+
+std::vector<Sequence> SequencesOf(const TrainingSet& set) {
+  std::vector<Sequence> sequences;
+  for (int s = 0; s < set.NumLayers() * set.NumGaits(); ++s) {
+    sequences.push_back({s * set.poses_per_gait, set.poses_per_gait});
+  }
+  return sequences;
+}
+
+GpParameters RandomParameters(const ModelSpec& spec, const TrainingSet& set, const Topology* topology) {
+  std::mt19937 random(5);
+  std::normal_distribution<double> noise(0, 0.05);
+  GpParameters p;
+  p.x = topology ? topology->coordinates : Eigen::MatrixXd::Random(set.NumPoints(), 3);
+  for (int i = 0; i < p.x.size(); ++i) p.x.data()[i] += noise(random);
+  p.log_beta = Eigen::Vector3d(0.1, 0.3, 2.0);
+  if (spec.terms.dynamics) p.log_alpha = Eigen::Vector4d(-0.1, 0.2, -1.5, 2.5);
+  if (spec.terms.channel_scales) {
+    p.log_w = Eigen::VectorXd::Zero(set.NumChannels());
+    for (int k = 0; k < p.log_w.size(); ++k) p.log_w[k] = noise(random);
+  }
+  return p;
+}
+
+void CheckAgainstFiniteDifferences(const GpObjective& objective, const GpParameters& p,
+                                   const std::vector<int>& subset) {
+  GpParameters gradient;
+  const ObjectiveValue value = objective.EvaluateSubset(p, subset, &gradient);
+  ASSERT_TRUE(value.ok) << value.why;
+  std::vector<double> packed(p.Size()), analytic(p.Size());
+  p.Pack(packed.data());
+  gradient.Pack(analytic.data());
+  GpParameters q = p;
+  const double h = 1e-5;
+  double worst = 0;
+  std::vector<bool> free_row(p.x.rows(), false);
+  for (int i : subset) free_row[i] = true;
+  for (int k = 0; k < p.Size(); ++k) {
+    // Latent points outside the subset are held fixed: their gradient is zero by design.
+    if (k < p.x.size() && !free_row[k / 3]) {
+      EXPECT_EQ(analytic[k], 0.0);
+      continue;
+    }
+    std::vector<double> plus = packed, minus = packed;
+    plus[k] += h;
+    minus[k] -= h;
+    q.Unpack(plus.data());
+    const double f_plus = objective.EvaluateSubset(q, subset, nullptr).total;
+    q.Unpack(minus.data());
+    const double f_minus = objective.EvaluateSubset(q, subset, nullptr).total;
+    const double fd = (f_plus - f_minus) / (2 * h);
+    const double error = std::abs(fd - analytic[k]) / std::max(1.0, std::abs(fd));
+    worst = std::max(worst, error);
+    EXPECT_LT(error, 1e-5) << "parameter " << k << ": analytic " << analytic[k] << ", fd " << fd;
+  }
+  std::cout << "worst relative gradient error " << worst << " over " << p.Size() << " parameters\n";
+}
+
+TEST_P(ObjectiveGradient, FullAndSubsetMatchFiniteDifferences) {
+  const ModelSpec spec = SpecFor(GetParam(), 4);
+  const GaitDataset dataset = test::SyntheticGaitDataset(4, 6, 4);
+  const TrainingSet set = MakeTrainingSet(dataset, spec.layer_scales);
+  Topology topology;
+  if (spec.topology) {
+    TopologyOptions options;
+    options.shape = spec.shape;
+    topology = MakeTopology(set, options);
+  }
+  const GpObjective objective(set.y, SequencesOf(set), spec.topology ? &topology : nullptr, spec.terms);
+  const GpParameters p = RandomParameters(spec, set, spec.topology ? &topology : nullptr);
+  std::vector<int> all(set.NumPoints());
+  for (int i = 0; i < set.NumPoints(); ++i) all[i] = i;
+  CheckAgainstFiniteDifferences(objective, p, all);
+  // A subset: every third point and a run of consecutive ones (so dynamics pairs exist).
+  std::vector<int> subset;
+  for (int i = 0; i < set.NumPoints(); ++i) {
+    if (i % 3 == 0 || (i >= 6 && i < 12)) subset.push_back(i);
+  }
+  CheckAgainstFiniteDifferences(objective, p, subset);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllGpKinds, ObjectiveGradient,
+                         testing::Values(ModelKind::kGplvm, ModelKind::kGpdm, ModelKind::kBgpdm,
+                                         ModelKind::kLlgpdm, ModelKind::kJgpm,
+                                         ModelKind::kMljgpmTorus, ModelKind::kMljgpmCyl),
+                         [](const testing::TestParamInfo<ModelKind>& info) {
+                           std::string name(ModelKindName(info.param));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// The mapping term of a two-point GPLVM by hand: K = [[b1 + 1/b3, c], [c, b1 + 1/b3]].
+TEST(Objective, MappingTermByHand) {
+  Eigen::MatrixXd y(2, 1);
+  y << 1.0, -0.5;
+  const GpObjective objective(y, {}, nullptr, ObjectiveTerms{});
+  GpParameters p;
+  p.x = Eigen::MatrixXd::Zero(2, 3);
+  p.x(1, 0) = 1.0;
+  p.log_beta = Eigen::Vector3d(0, 0, std::log(10.0));
+  const double c = std::exp(-0.5), a = 1.1;
+  const double det = a * a - c * c;
+  const double quad = (a * 1.0 * 1.0 - 2 * c * 1.0 * -0.5 + a * 0.25) / det;
+  const double expected = 0.5 * std::log(det) + 0.5 * quad + std::log(2 * M_PI) + std::log(10.0);
+  const ObjectiveValue value = objective.Evaluate(p, nullptr);
+  ASSERT_TRUE(value.ok);
+  EXPECT_NEAR(value.total, expected, 1e-12);
+}
+
+TEST(Objective, DuplicateLatentPointsGiveFiniteValuesAndGradients) {
+  const GaitDataset dataset = test::SyntheticGaitDataset(3, 6, 4);
+  const TrainingSet set = MakeTrainingSet(dataset, {1.0});
+  const ModelSpec spec = SpecFor(ModelKind::kGpdm, set.NumChannels());
+  const GpObjective objective(set.y, SequencesOf(set), nullptr, spec.terms);
+  GpParameters p;
+  p.x = Eigen::MatrixXd::Zero(set.NumPoints(), 3);  // every point on top of every other
+  p.log_beta = Eigen::Vector3d(0, 0, 45.0);        // and noise far below rounding (1e-20)
+  p.log_alpha = Eigen::Vector4d(0, 0, 0, 45.0);
+  p.log_w = Eigen::VectorXd::Zero(set.NumChannels());
+  GpParameters gradient;
+  const ObjectiveValue value = objective.Evaluate(p, &gradient);
+  ASSERT_TRUE(value.ok) << value.why;
+  EXPECT_GT(value.jitter, 0.0);
+  EXPECT_TRUE(std::isfinite(value.total));
+  EXPECT_TRUE(gradient.x.allFinite() && gradient.log_beta.allFinite() && gradient.log_alpha.allFinite());
+  // NaN in the parameters is reported, not passed on.
+  p.x(0, 0) = std::nan("");
+  const ObjectiveValue bad = objective.Evaluate(p, &gradient);
+  EXPECT_FALSE(bad.ok);
+  EXPECT_FALSE(bad.why.empty());
+}
+
+}  // namespace
+}  // namespace jgpm
