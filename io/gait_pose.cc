@@ -77,6 +77,20 @@ void GaitPoseLayout::ToFrame(const double* pose, double* frame) const {
   for (int c = 0; c < NumChannels(); ++c) frame[skeleton_channel_[c]] = pose[c];
 }
 
+GaitPoseKinematics::GaitPoseKinematics(const Skeleton& skeleton, const std::string& source)
+    : layout_(skeleton, source), kinematics_(skeleton) {}
+
+void GaitPoseKinematics::Compute(const double* pose, Eigen::Matrix3Xd* joints) const {
+  thread_local std::vector<double> frame;
+  thread_local Eigen::Matrix3Xd all;
+  frame.resize(kinematics_.NumChannels());
+  layout_.ToFrame(pose, frame.data());
+  kinematics_.Compute(frame.data(), &all);
+  const std::vector<int>& columns = layout_.measured_columns();
+  joints->resize(3, static_cast<int>(columns.size()));
+  for (size_t j = 0; j < columns.size(); ++j) joints->col(j) = all.col(columns[j]);
+}
+
 double HeadingOf(const Eigen::Matrix3d& root_rotation) {
   const Eigen::Vector3d forward = root_rotation.col(2);
   return std::atan2(forward.x(), forward.z()) * kRadToDeg;

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "io/kinematics.h"
 #include "io/skeleton.h"
 
 namespace jgpm {
@@ -62,6 +63,22 @@ class GaitPoseLayout {
   std::vector<Axis> root_axes_;           // root rotation dofs, in order
   std::vector<int> root_frame_channels_;  // their indices in a skeleton frame
   std::vector<int> root_pose_channels_;   // and in a pose
+};
+
+// Joint positions of gait poses on one skeleton.
+class GaitPoseKinematics {
+ public:
+  // InputError (naming `source`) if the skeleton lacks a gait joint's bone.
+  GaitPoseKinematics(const Skeleton& skeleton, const std::string& source);
+
+  const GaitPoseLayout& layout() const { return layout_; }
+  // Positions in millimetres of the 17 measured joints (GaitJoints() 1..17, see
+  // GaitPoseLayout::measured_columns) of a pose at the origin facing +z: 3 x 17.
+  void Compute(const double* pose, Eigen::Matrix3Xd* joints) const;
+
+ private:
+  GaitPoseLayout layout_;
+  Kinematics kinematics_;
 };
 
 // Heading (degrees about +y; 0 when facing +z, the CMU skeleton's forward direction) of a

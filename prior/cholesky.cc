@@ -56,6 +56,16 @@ Eigen::MatrixXd Cholesky::Solve(const Eigen::MatrixXd& b) const {
   return x;
 }
 
+Eigen::MatrixXd Cholesky::HalfSolve(const Eigen::MatrixXd& b) const {
+  JGPM_CHECK(ok_ && b.rows() == factor_.rows());
+  return factor_.triangularView<Eigen::Lower>().solve(b);
+}
+
+Eigen::MatrixXd Cholesky::HalfSolveTransposed(const Eigen::MatrixXd& b) const {
+  JGPM_CHECK(ok_ && b.rows() == factor_.rows());
+  return factor_.triangularView<Eigen::Lower>().transpose().solve(b);
+}
+
 Eigen::MatrixXd Cholesky::Inverse() const {
   JGPM_CHECK(ok_);
   Eigen::MatrixXd inverse = factor_;

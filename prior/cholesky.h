@@ -30,6 +30,11 @@ class Cholesky {
   double LogDeterminant() const;
   // (K + jitter I)^-1 b.
   Eigen::MatrixXd Solve(const Eigen::MatrixXd& b) const;
+  // L^-1 b, where K + jitter I = L L^T: |L^-1 k|^2 = k^T K^-1 k without the cancellation
+  // of a quadratic form in an explicit inverse.
+  Eigen::MatrixXd HalfSolve(const Eigen::MatrixXd& b) const;
+  // L^-T b.
+  Eigen::MatrixXd HalfSolveTransposed(const Eigen::MatrixXd& b) const;
   // (K + jitter I)^-1 as a full symmetric matrix, from the factor (LAPACK dpotri).
   Eigen::MatrixXd Inverse() const;
 

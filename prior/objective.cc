@@ -200,6 +200,8 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   if (gradient) {
     gradient->log_beta.array() += 1.0;
     gradient->log_alpha.array() += 1.0;
+    if (terms_.fixed_inverse_width) gradient->log_beta[1] = 0.0;
+    if (terms_.fixed_dynamics_noise && terms_.dynamics) gradient->log_alpha[3] = 0.0;
     for (int k = 0; k < m; ++k) gradient->x.row(subset[k]) = dx.row(k);
   }
   value.total = value.mapping + value.latent + value.dynamics + value.topology + value.priors;

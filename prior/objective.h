@@ -8,6 +8,19 @@
 //   topology  1/sigma^2 sum_d sum_i (x_i^d - sum_j w_ij^d x_j^d)^2   (LLE weights)
 //   priors    sum ln b_i + sum ln a_i + sum w_k^2 / (2 kappa^2)
 //
+// The mapping's inverse width b2 is held fixed (its gradient is reported as zero): the
+// mapping term is invariant to (X, b2) -> (cX, b2 / c^2), while the dynamics and topology
+// terms always gain by shrinking X, so with b2 free the latent space collapses (seen on
+// the training split: b2 -> 1.8e4 and X -> +/-0.1 after 3000 L-BFGS iterations, the
+// objective still falling). Holding b2 = 1 fixes the latent scale to the prior's (pose
+// circles of radius 1) or to the unit-variance PCA initialisation.
+//
+// The dynamics noise 1/a4 is held fixed too: learned, it falls without bound (seen: a4 ->
+// 2e9 after 5000 iterations, no convergence) as the latent trajectories bend to predict
+// every next point exactly. Wang et al. hold the GPDM's dynamics hyper-parameters fixed
+// for the same reason; we fix only the noise, at a4 = 1e4 (noise std 0.01, 5% of the
+// distance between neighbouring poses on the prior's pose circle).
+//
 // Every term can be restricted to a subset of the points (topology-aware local
 // learning): the mapping and dynamics GPs are then built on the subset alone and points
 // outside it are held fixed.
@@ -50,6 +63,8 @@ struct ObjectiveTerms {
   bool topology = false;
   double topology_sigma2 = 0.01;  // sigma^2 of the LLE energy
   double scale_prior_width = 1e3; // kappa of p(W)
+  bool fixed_inverse_width = true;  // hold b2 (see above)
+  bool fixed_dynamics_noise = true; // hold a4 (see above)
 };
 
 // Parts of one evaluation, for reports and tests.

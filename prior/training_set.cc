@@ -30,22 +30,29 @@ TrainingSet MakeTrainingSet(const GaitDataset& dataset, const std::vector<double
   const int d = static_cast<int>(set.channel_names.size());
   const int n = set.NumLayers() * set.NumGaits() * poses;
   set.y_deg.resize(n, d);
-  set.points.resize(n);
   for (int layer = 0; layer < set.NumLayers(); ++layer) {
     for (int gait = 0; gait < set.NumGaits(); ++gait) {
       const Eigen::MatrixXd scaled = ScaleGait(cycles[gait]->poses, layer_scales[layer]);
-      for (int pose = 0; pose < poses; ++pose) {
-        const int row = set.Row(layer, gait, pose);
-        set.y_deg.row(row) = scaled.row(pose);
-        set.points[row] = {layer, gait, pose};
-      }
+      for (int pose = 0; pose < poses; ++pose) set.y_deg.row(set.Row(layer, gait, pose)) = scaled.row(pose);
     }
   }
   set.mean = set.y_deg.colwise().mean();
   const Eigen::MatrixXd centred = set.y_deg.rowwise() - set.mean;
   set.scale = (centred.colwise().squaredNorm() / n).array().sqrt().max(1e-3).matrix();
-  set.y = centred.array().rowwise() / set.scale.array();
+  ComputeDerivedFields(&set);
   return set;
+}
+
+void ComputeDerivedFields(TrainingSet* set) {
+  set->points.resize(set->y_deg.rows());
+  for (int layer = 0; layer < set->NumLayers(); ++layer) {
+    for (int gait = 0; gait < set->NumGaits(); ++gait) {
+      for (int pose = 0; pose < set->poses_per_gait; ++pose) {
+        set->points[set->Row(layer, gait, pose)] = {layer, gait, pose};
+      }
+    }
+  }
+  set->y = (set->y_deg.rowwise() - set->mean).array().rowwise() / set->scale.array();
 }
 
 }  // namespace jgpm

@@ -48,6 +48,9 @@ struct TrainingSet {
 //   y'_{u,k} = mean_u(y_{.,k}) + s (y_{u,k} - mean_u(y_{.,k})).
 Eigen::MatrixXd ScaleGait(const Eigen::MatrixXd& cycle, double scale);
 
+// Fills `points` and `y` from the counts, y_deg, mean and scale (what a model file stores).
+void ComputeDerivedFields(TrainingSet* set);
+
 // Builds the training set from the clean cycles of `dataset`, one layer per scale.
 // InputError if the dataset has no clean cycle or the scales are not positive.
 TrainingSet MakeTrainingSet(const GaitDataset& dataset, const std::vector<double>& layer_scales);

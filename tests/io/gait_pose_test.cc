@@ -79,6 +79,20 @@ TEST_F(GaitPoseTest, RemovingTheHeadingMakesTurnedWalksEqual) {
   }
 }
 
+TEST_F(GaitPoseTest, KinematicsGivesTheMeasuredJointsOfToFrame) {
+  const GaitPoseKinematics fk(skeleton_, "35.asf");
+  std::vector<double> pose(43), frame(skeleton_.NumChannels());
+  layout_.FromFrame(motion_.Frame(20), 0.0, pose.data());
+  Eigen::Matrix3Xd joints;
+  fk.Compute(pose.data(), &joints);
+  ASSERT_EQ(joints.cols(), 17);
+  layout_.ToFrame(pose.data(), frame.data());
+  const Eigen::Matrix3Xd all = Kinematics(skeleton_).Compute(frame.data());
+  for (int j = 0; j < 17; ++j) EXPECT_EQ(joints.col(j), all.col(layout_.measured_columns()[j]));
+  // The root sits at the origin, so the head is about a torso's length above it.
+  EXPECT_GT(joints.col(4).y(), 400);
+}
+
 TEST(GaitPose, HeadingOfByHand) {
   EXPECT_NEAR(HeadingOf(Eigen::Matrix3d::Identity()), 0, 1e-12);
   EXPECT_NEAR(HeadingOf(AxisRotation(Axis::kY, 90)), 90, 1e-12);   // facing +x

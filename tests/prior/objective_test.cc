@@ -73,7 +73,9 @@ void CheckAgainstFiniteDifferences(const GpObjective& objective, const GpParamet
 }
 
 TEST_P(ObjectiveGradient, FullAndSubsetMatchFiniteDifferences) {
-  const ModelSpec spec = SpecFor(GetParam(), 4);
+  ModelSpec spec = SpecFor(GetParam(), 4);
+  spec.terms.fixed_inverse_width = false;  // check those gradients too
+  spec.terms.fixed_dynamics_noise = false;
   const GaitDataset dataset = test::SyntheticGaitDataset(4, 6, 4);
   const TrainingSet set = MakeTrainingSet(dataset, spec.layer_scales);
   Topology topology;
@@ -121,6 +123,18 @@ TEST(Objective, MappingTermByHand) {
   const ObjectiveValue value = objective.Evaluate(p, nullptr);
   ASSERT_TRUE(value.ok);
   EXPECT_NEAR(value.total, expected, 1e-12);
+}
+
+TEST(Objective, FixedInverseWidthHasZeroGradient) {
+  Eigen::MatrixXd y = Eigen::MatrixXd::Random(5, 2);
+  const GpObjective objective(y, {}, nullptr, ObjectiveTerms{});
+  GpParameters p;
+  p.x = Eigen::MatrixXd::Random(5, 3);
+  p.log_beta = Eigen::Vector3d(0.2, 0.0, 1.0);
+  GpParameters gradient;
+  ASSERT_TRUE(objective.Evaluate(p, &gradient).ok);
+  EXPECT_EQ(gradient.log_beta[1], 0.0);
+  EXPECT_NE(gradient.log_beta[0], 0.0);
 }
 
 TEST(Objective, DuplicateLatentPointsGiveFiniteValuesAndGradients) {

@@ -6,12 +6,14 @@
 
 #include "io/error.h"
 #include "tracker/cli/data_commands.h"
+#include "tracker/cli/prior_commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"jgpm: gait priors (ML-JGPM) from motion capture and 3-D gait tracking in video"};
   app.set_version_flag("--version", "jgpm " JGPM_VERSION);
   app.require_subcommand(1);
   jgpm::cli::AddDataCommands(app);
+  jgpm::cli::AddPriorCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here
   } catch (const CLI::Success& e) {

@@ -1,0 +1,133 @@
+#include "prior/full_trainer.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <ceres/first_order_function.h>
+#include <ceres/gradient_problem.h>
+#include <ceres/gradient_problem_solver.h>
+#include <ceres/iteration_callback.h>
+
+namespace jgpm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class ObjectiveFunction : public ceres::FirstOrderFunction {
+ public:
+  ObjectiveFunction(const GpObjective& objective, const GpParameters& shape)
+      : objective_(objective), scratch_(shape), gradient_(shape.ZerosLike()) {}
+
+  bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
+    scratch_.Unpack(parameters);
+    const ObjectiveValue value = objective_.Evaluate(scratch_, gradient ? &gradient_ : nullptr);
+    ++evaluations_;
+    if (!value.ok) {
+      last_failure_ = value.why;
+      return false;  // Ceres shortens the step
+    }
+    max_jitter_ = std::max(max_jitter_, value.jitter);
+    *cost = value.total;
+    if (gradient) {
+      gradient_.Pack(gradient);
+      for (int k = 0; k < NumParameters(); ++k) {
+        if (!std::isfinite(gradient[k])) {
+          last_failure_ = "gradient is not finite";
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+  int NumParameters() const override { return scratch_.Size(); }
+
+  mutable int evaluations_ = 0;
+  mutable double max_jitter_ = 0;
+  mutable std::string last_failure_;
+
+ private:
+  const GpObjective& objective_;
+  mutable GpParameters scratch_;
+  mutable GpParameters gradient_;
+};
+
+class ProgressReporter : public ceres::IterationCallback {
+ public:
+  ProgressReporter(const FullTrainingOptions& options, const ObjectiveFunction& function)
+      : options_(options), function_(function), start_(Clock::now()), last_report_(start_) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    const auto now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const bool last = summary.iteration >= options_.max_iterations;
+    if (options_.progress &&
+        (summary.iteration == 0 || last ||
+         std::chrono::duration<double>(now - last_report_).count() >= options_.progress_interval_s)) {
+      last_report_ = now;
+      TrainingProgress p;
+      p.stage = "full";
+      p.iteration = summary.iteration;
+      p.max_iterations = options_.max_iterations;
+      p.objective = summary.cost;
+      p.jitter = function_.max_jitter_;
+      p.elapsed_seconds = elapsed;
+      p.rate = elapsed > 0 ? summary.iteration / elapsed : 0;
+      p.seconds_left = p.rate > 0 ? (options_.max_iterations - summary.iteration) / p.rate : 0;
+      options_.progress(p);
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const FullTrainingOptions& options_;
+  const ObjectiveFunction& function_;
+  Clock::time_point start_, last_report_;
+};
+
+}  // namespace
+
+TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
+                          const FullTrainingOptions& options) {
+  const auto start = Clock::now();
+  auto* function = new ObjectiveFunction(objective, *params);
+  const ceres::GradientProblem problem(function);  // takes ownership
+  std::vector<double> x(params->Size());
+  params->Pack(x.data());
+
+  ceres::GradientProblemSolver::Options solver;
+  solver.line_search_direction_type = ceres::LBFGS;
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = options.function_tolerance;
+  solver.gradient_tolerance = options.gradient_tolerance;
+  solver.parameter_tolerance = 1e-12;
+  solver.logging_type = ceres::SILENT;
+  ProgressReporter reporter(options, *function);
+  solver.callbacks.push_back(&reporter);
+  solver.update_state_every_iteration = false;
+
+  ceres::GradientProblemSolver::Summary ceres_summary;
+  ceres::Solve(solver, problem, x.data(), &ceres_summary);
+  params->Unpack(x.data());
+
+  TrainingSummary summary;
+  summary.learning = "full";
+  summary.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
+  summary.evaluations = function->evaluations_;
+  summary.initial_objective = ceres_summary.initial_cost;
+  summary.final_objective = ceres_summary.final_cost;
+  summary.max_jitter = function->max_jitter_;
+  summary.message = ceres_summary.message;
+  if (ceres_summary.termination_type == ceres::CONVERGENCE) {
+    summary.termination = "converged";
+  } else if (ceres_summary.termination_type == ceres::NO_CONVERGENCE) {
+    summary.termination = "no convergence";
+  } else {
+    summary.termination = "numerical failure";
+    if (!function->last_failure_.empty()) summary.message += " (" + function->last_failure_ + ")";
+  }
+  summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return summary;
+}
+
+
+}  // namespace jgpm

@@ -1,0 +1,185 @@
+#include "prior/local_trainer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include <nanoflann.hpp>
+
+#include "io/error.h"
+
+namespace jgpm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// nanoflann adaptor over the rows of a matrix; must not outlive it.
+struct RowsAdaptor {
+  const Eigen::MatrixXd& rows;
+  size_t kdtree_get_point_count() const { return static_cast<size_t>(rows.rows()); }
+  double kdtree_get_pt(size_t i, size_t d) const { return rows(static_cast<int>(i), static_cast<int>(d)); }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const { return false; }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, RowsAdaptor>,
+                                                   RowsAdaptor, 3, int>;
+
+}  // namespace
+
+bool LocalTrainingOptions::Check(std::string* why) const {
+  if (neighbourhood_size < 4) *why = "neighbourhood_size must be at least 4";
+  else if (!(max_neighbourhood_fraction > 0 && max_neighbourhood_fraction <= 1)) *why = "max_neighbourhood_fraction must be in (0, 1]";
+  else if (!(latent_step > 0) || !(hyper_step >= 0)) *why = "step sizes must be positive";
+  else if (max_steps < 1) *why = "max_steps must be >= 1";
+  else if (evaluation_interval < 0) *why = "evaluation_interval must be >= 0";
+  else if (!(tolerance >= 0)) *why = "tolerance must be >= 0";
+  else if (patience < 1) *why = "patience must be >= 1";
+  else return true;
+  return false;
+}
+
+int LocalNeighbourhoodSize(int num_points, const LocalTrainingOptions& options) {
+  const int cap = static_cast<int>(options.max_neighbourhood_fraction * num_points);
+  return std::max(4, std::min(options.neighbourhood_size, cap));
+}
+
+std::vector<std::vector<int>> LocalNeighbourhoods(const TrainingSet& set,
+                                                  const Eigen::MatrixXd& prior_coordinates, int size) {
+  const int layers = set.NumLayers();
+  const int per_layer_points = set.NumGaits() * set.poses_per_gait;
+  const int per_layer = std::max(1, std::min(size / layers, per_layer_points));
+  std::vector<Eigen::MatrixXd> layer_coordinates(layers);
+  std::vector<std::unique_ptr<KdTree>> trees;
+  std::vector<std::unique_ptr<RowsAdaptor>> adaptors;
+  for (int l = 0; l < layers; ++l) {
+    layer_coordinates[l] = prior_coordinates.middleRows(set.Row(l, 0, 0), per_layer_points);
+    adaptors.push_back(std::make_unique<RowsAdaptor>(RowsAdaptor{layer_coordinates[l]}));
+    trees.push_back(std::make_unique<KdTree>(3, *adaptors.back(), nanoflann::KDTreeSingleIndexAdaptorParams(10)));
+    trees.back()->buildIndex();
+  }
+  std::vector<std::vector<int>> neighbourhoods(set.NumPoints());
+  std::vector<int> indices(per_layer);
+  std::vector<double> distances(per_layer);
+  for (int i = 0; i < set.NumPoints(); ++i) {
+    const TrainingPoint& point = set.points[i];
+    for (int l = 0; l < layers; ++l) {
+      const Eigen::Vector3d query = prior_coordinates.row(set.Row(l, point.gait, point.pose));
+      const size_t found = trees[l]->knnSearch(query.data(), per_layer, indices.data(), distances.data());
+      for (size_t k = 0; k < found; ++k) neighbourhoods[i].push_back(set.Row(l, 0, 0) + indices[k]);
+    }
+    std::sort(neighbourhoods[i].begin(), neighbourhoods[i].end());
+    neighbourhoods[i].erase(std::unique(neighbourhoods[i].begin(), neighbourhoods[i].end()), neighbourhoods[i].end());
+  }
+  return neighbourhoods;
+}
+
+TrainingSummary TrainLocal(const GpObjective& objective,
+                           const std::vector<std::vector<int>>& neighbourhoods,
+                           GpParameters* params, const LocalTrainingOptions& options) {
+  std::string why;
+  JGPM_CHECK(options.Check(&why));
+  JGPM_CHECK(static_cast<int>(neighbourhoods.size()) == objective.NumPoints());
+  const auto start = Clock::now();
+  TrainingSummary summary;
+  summary.learning = "local";
+  ObjectiveValue full = objective.Evaluate(*params, nullptr);
+  summary.evaluations = 1;
+  if (!full.ok) {
+    summary.termination = "numerical failure";
+    summary.message = full.why;
+    return summary;
+  }
+  summary.initial_objective = full.total;
+  summary.max_jitter = full.jitter;
+  const int n = objective.NumPoints();
+  const int m = static_cast<int>(neighbourhoods[0].size());
+  const int interval = options.evaluation_interval > 0 ? options.evaluation_interval
+                                                        : std::max(100, (n + m - 1) / m);
+  std::mt19937_64 random(options.seed);
+  std::uniform_int_distribution<int> pick(0, n - 1);
+
+  // Adam state over the packed parameters; latent rows are only touched by the steps of
+  // neighbourhoods that hold them.
+  const int size = params->Size();
+  const int latent = static_cast<int>(params->x.size());
+  std::vector<double> x(size), g(size), first(size, 0.0), second(size, 0.0);
+  std::vector<int> updates(size, 0);  // per-parameter step count for bias correction
+  constexpr double kBeta1 = 0.9, kBeta2 = 0.999, kEpsilon = 1e-8;
+  params->Pack(x.data());
+  GpParameters best = *params;
+  double best_value = full.total;
+  GpParameters gradient;
+  int quiet = 0;
+  auto last_report = start;
+  summary.termination = "no convergence";
+  summary.message = "maximum number of steps reached";
+  for (int step = 1; step <= options.max_steps; ++step) {
+    const std::vector<int>& subset = neighbourhoods[pick(random)];
+    const ObjectiveValue local = objective.EvaluateSubset(*params, subset, &gradient);
+    summary.max_jitter = std::max(summary.max_jitter, local.jitter);
+    ++summary.iterations;
+    if (local.ok) {
+      gradient.Pack(g.data());
+      auto update = [&](int k, double rate) {
+        if (!std::isfinite(g[k])) return;
+        ++updates[k];
+        first[k] = kBeta1 * first[k] + (1 - kBeta1) * g[k];
+        second[k] = kBeta2 * second[k] + (1 - kBeta2) * g[k] * g[k];
+        const double m_hat = first[k] / (1 - std::pow(kBeta1, updates[k]));
+        const double v_hat = second[k] / (1 - std::pow(kBeta2, updates[k]));
+        x[k] -= rate * m_hat / (std::sqrt(v_hat) + kEpsilon);
+      };
+      for (int i : subset) {
+        for (int d = 0; d < 3; ++d) update(3 * i + d, options.latent_step);
+      }
+      for (int k = latent; k < size; ++k) {
+        if (g[k] != 0.0) update(k, options.hyper_step);  // fixed ones have zero gradient
+      }
+      params->Unpack(x.data());
+    }
+    if (step % interval != 0 && step != options.max_steps) continue;
+
+    full = objective.Evaluate(*params, nullptr);
+    ++summary.evaluations;
+    if (!full.ok) {
+      summary.termination = "numerical failure";
+      summary.message = full.why;
+      break;
+    }
+    const double improvement = (best_value - full.total) / std::max(1.0, std::abs(best_value));
+    if (full.total < best_value) {
+      best_value = full.total;
+      best = *params;
+    }
+    quiet = improvement < options.tolerance ? quiet + 1 : 0;
+    const auto now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start).count();
+    if (options.progress &&
+        std::chrono::duration<double>(now - last_report).count() >= options.progress_interval_s) {
+      last_report = now;
+      TrainingProgress p;
+      p.stage = "local";
+      p.iteration = step;
+      p.max_iterations = options.max_steps;
+      p.objective = full.total;
+      p.jitter = summary.max_jitter;
+      p.elapsed_seconds = elapsed;
+      p.rate = step / elapsed;
+      p.seconds_left = (options.max_steps - step) / p.rate;
+      options.progress(p);
+    }
+    if (quiet >= options.patience) {
+      summary.termination = "converged";
+      summary.message = "full objective improved by less than " + std::to_string(options.tolerance) +
+                        " (relative) in " + std::to_string(options.patience) + " evaluations";
+      break;
+    }
+  }
+  *params = best;
+  summary.final_objective = best_value;
+  summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,118 @@
+#include "prior/train.h"
+
+#include <chrono>
+
+#include <Eigen/SVD>
+
+#include "io/error.h"
+#include "prior/cholesky.h"
+#include "prior/topology.h"
+
+namespace jgpm {
+namespace {
+
+std::vector<Sequence> Sequences(const TrainingSet& set) {
+  std::vector<Sequence> sequences;
+  for (int s = 0; s < set.NumLayers() * set.NumGaits(); ++s) {
+    sequences.push_back({s * set.poses_per_gait, set.poses_per_gait});
+  }
+  return sequences;
+}
+
+// Leading three right singular vectors of the normalised poses.
+Eigen::MatrixXd PrincipalBasis(const Eigen::MatrixXd& y) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(y, Eigen::ComputeThinV);
+  Eigen::MatrixXd basis = svd.matrixV().leftCols(3);
+  // Sign convention: the largest entry of each component positive, so results repeat.
+  for (int c = 0; c < 3; ++c) {
+    Eigen::Index largest;
+    basis.col(c).cwiseAbs().maxCoeff(&largest);
+    if (basis(largest, c) < 0) basis.col(c) *= -1;
+  }
+  return basis;
+}
+
+}  // namespace
+
+bool TrainingOptions::Check(std::string* why) const {
+  if (!(topology_sigma2 > 0)) {
+    *why = "topology sigma^2 must be > 0";
+    return false;
+  }
+  if (threads < 0) {
+    *why = "threads must be >= 0";
+    return false;
+  }
+  return local.Check(why);
+}
+
+std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
+                                          const ReferenceSkeleton& skeleton,
+                                          const TrainingOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("training options", why);
+  SetLinearAlgebraThreads(options.threads);
+  const ModelSpec spec = SpecFor(options.kind, static_cast<int>(dataset.channel_names.size()));
+  GaitModelData data;
+  data.kind = options.kind;
+  data.split = dataset.split;
+  data.seed = options.seed;
+  data.terms = spec.terms;
+  data.terms.topology_sigma2 = options.topology_sigma2;
+  data.set = MakeTrainingSet(dataset, spec.layer_scales);
+  data.skeleton_trial = skeleton.trial;
+  data.skeleton_asf = skeleton.asf;
+  const TrainingSet& set = data.set;
+
+  const Eigen::MatrixXd basis = PrincipalBasis(set.y);
+  Eigen::MatrixXd scores = set.y * basis;
+  if (!spec.gaussian_process) {
+    const auto start = std::chrono::steady_clock::now();
+    data.learning = "closed form";
+    data.pca_basis = basis;
+    data.params.x = scores;
+    data.summary.learning = "closed form";
+    data.summary.termination = "converged";
+    data.summary.message = "principal components of the training poses";
+    data.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return GaitModel::Create(std::move(data), "training");
+  }
+
+  Topology topology;
+  if (spec.topology) {
+    data.topology_options.shape = spec.shape;
+    topology = MakeTopology(set, data.topology_options);
+    data.gait_order = topology.gait_order;
+    data.prior_coordinates = topology.coordinates;
+    data.params.x = topology.coordinates;
+  } else {
+    data.params.x = scores / std::sqrt(scores.squaredNorm() / (3.0 * scores.rows()));
+  }
+  data.params.log_beta = Eigen::Vector3d(0, 0, std::log(100.0));
+  if (spec.terms.dynamics) data.params.log_alpha = Eigen::Vector4d(0, 0, std::log(0.1), std::log(1e4));
+  if (spec.terms.channel_scales) data.params.log_w = Eigen::VectorXd::Zero(set.NumChannels());
+
+  const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);
+  if (options.learning == Learning::kFull) {
+    FullTrainingOptions full = options.full;
+    if (options.progress) full.progress = options.progress;
+    data.learning = "full";
+    data.summary = TrainFull(objective, &data.params, full);
+  } else {
+    LocalTrainingOptions local = options.local;
+    local.seed = options.seed;
+    if (options.progress) local.progress = options.progress;
+    // Neighbourhoods over the prior's coordinates where there is a topology, else over
+    // the initial latent points.
+    const Eigen::MatrixXd& where = spec.topology ? topology.coordinates : data.params.x;
+    const auto neighbourhoods = LocalNeighbourhoods(set, where, LocalNeighbourhoodSize(set.NumPoints(), local));
+    data.learning = "local";
+    data.summary = TrainLocal(objective, neighbourhoods, &data.params, local);
+  }
+  if (!data.summary.usable()) {
+    ThrowInputError("training", "numerical failure: " + data.summary.message);
+  }
+  return GaitModel::Create(std::move(data), "training");
+}
+
+}  // namespace jgpm

@@ -1,0 +1,44 @@
+// Training a gait model of any kind from a prepared gait dataset.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "io/gait_dataset.h"
+#include "prior/full_trainer.h"
+#include "prior/gait_model.h"
+#include "prior/local_trainer.h"
+
+namespace jgpm {
+
+enum class Learning { kFull, kLocal };
+
+struct TrainingOptions {
+  ModelKind kind = ModelKind::kMljgpmTorus;
+  Learning learning = Learning::kFull;
+  uint64_t seed = 1;                 // local learning's choice of reference points
+  int threads = 0;                   // linear-algebra threads; 0: OpenBLAS's default
+  double topology_sigma2 = 0.01;     // sigma^2 of the LLE topology energy
+  FullTrainingOptions full;
+  LocalTrainingOptions local;
+  ProgressCallback progress;         // overrides full.progress and local.progress
+
+  bool Check(std::string* why) const;
+};
+
+// The reference skeleton the model's joint positions use.
+struct ReferenceSkeleton {
+  std::string trial;  // e.g. "35_01"
+  std::string asf;    // ASF text
+};
+
+// Initial latent points: the topology prior's coordinates (JGPM family), else the
+// training poses' 3 leading principal components scaled to unit variance. Hyper-parameters
+// start at b = (1, 1, 100) (noise std 0.1 of a normalised channel), a = (1, 1, 0.1, 1e4),
+// W = 1. InputError for bad options or data.
+std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
+                                          const ReferenceSkeleton& skeleton,
+                                          const TrainingOptions& options);
+
+}  // namespace jgpm

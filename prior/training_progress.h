@@ -1,0 +1,38 @@
+// What long-running training reports while it runs and when it ends.
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace jgpm {
+
+struct TrainingProgress {
+  std::string stage;          // "full" or "local"
+  int iteration = 0;          // L-BFGS iterations, or local steps
+  int max_iterations = 0;
+  double objective = 0;       // the full objective (local: at its last evaluation)
+  double jitter = 0;          // largest Cholesky jitter so far
+  double elapsed_seconds = 0;
+  double rate = 0;            // iterations per second
+  double seconds_left = 0;    // upper bound: at this rate until max_iterations
+};
+
+using ProgressCallback = std::function<void(const TrainingProgress&)>;
+
+struct TrainingSummary {
+  std::string learning;      // "full", "local" or "closed form" (PCA)
+  std::string termination;   // "converged", "no convergence" or "numerical failure"
+  std::string message;       // detail from the optimiser
+  int iterations = 0;
+  int evaluations = 0;       // objective evaluations (local: of the full objective)
+  double initial_objective = 0;
+  double final_objective = 0;
+  double max_jitter = 0;
+  double wall_seconds = 0;
+
+  bool usable() const { return termination != "numerical failure"; }
+  // One line: how it ended, iterations, final objective, wall time.
+  std::string BriefReport() const;
+};
+
+}  // namespace jgpm

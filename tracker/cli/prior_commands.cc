@@ -1,0 +1,116 @@
+#include "tracker/cli/prior_commands.h"
+
+#include <cstdio>
+#include <memory>
+
+#include <unistd.h>
+
+#include "io/data_root.h"
+#include "io/error.h"
+#include "io/gait_dataset.h"
+#include "io/split.h"
+#include "io/text_reader.h"
+#include "prior/latent_plot.h"
+#include "prior/model_file.h"
+#include "prior/train.h"
+
+namespace jgpm::cli {
+namespace {
+
+struct TrainArguments {
+  std::string model = "mljgpm-torus";
+  std::string out;
+  std::string split = "train";
+  std::string dataset;
+  std::string data;
+  std::string learning = "full";
+  uint64_t seed = 1;
+  int threads = 0;
+  int max_iterations = 5000;
+  double sigma2 = 0.01;
+};
+
+void PrintProgress(const TrainingProgress& p) {
+  std::fprintf(stderr, "%s %7d/%d  objective %.7g  jitter %.1g  %.2f it/s  %.0f s, <= %.0f s left%s",
+               p.stage.c_str(), p.iteration, p.max_iterations, p.objective, p.jitter, p.rate,
+               p.elapsed_seconds, p.seconds_left, isatty(fileno(stderr)) ? "   \r" : "\n");
+  std::fflush(stderr);
+}
+
+void RunTrain(const TrainArguments& a) {
+  TrainingOptions options;
+  if (!ParseModelKind(a.model, &options.kind)) {
+    ThrowInputError("--model " + a.model, "expected one of " + ModelKindList());
+  }
+  options.learning = a.learning == "local" ? Learning::kLocal : Learning::kFull;
+  options.seed = a.seed;
+  options.threads = a.threads;
+  options.topology_sigma2 = a.sigma2;
+  options.full.max_iterations = a.max_iterations;
+  options.progress = PrintProgress;
+
+  const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
+  GaitDataset dataset;
+  if (!a.dataset.empty()) {
+    dataset = ReadGaitDataset(a.dataset);
+  } else {
+    const std::filesystem::path split = ResolveSplitPath(a.split, JGPM_SPLITS_DIR);
+    dataset = PrepareGaitDataset(root, a.split, ReadSplit(split), GaitCycleOptions{});
+  }
+  ReferenceSkeleton skeleton;
+  for (const GaitTrial& trial : dataset.trials) {
+    if (!trial.cycle.clean) continue;
+    skeleton.trial = trial.id.name;
+    skeleton.asf = ReadTextFile(root / trial.asf, "an ASF skeleton");
+    break;
+  }
+  if (skeleton.trial.empty()) ThrowInputError("--split " + a.split, "has no clean gait cycle");
+  std::printf("training %s (%s learning) on %d clean gait cycles of %s\n", a.model.c_str(),
+              a.learning.c_str(), dataset.NumClean(), dataset.split.c_str());
+  const std::unique_ptr<GaitModel> model = TrainGaitModel(dataset, skeleton, options);
+  if (isatty(fileno(stderr))) std::fputc('\n', stderr);
+  WriteModelFile(a.out, *model);
+  std::printf("%s\nwrote %s (%d latent points, %d channels)\n", model->data().summary.BriefReport().c_str(),
+              a.out.c_str(), model->NumPoints(), model->NumChannels());
+}
+
+}  // namespace
+
+void AddPriorCommands(CLI::App& app) {
+  auto a = std::make_shared<TrainArguments>();
+  CLI::App* train = app.add_subcommand("train", "Learn a gait prior from a split's walking trials");
+  train->add_option("--model", a->model, "model kind: " + ModelKindList())->capture_default_str();
+  train->add_option("--out", a->out, "model file to write (JSON)")->required();
+  train->add_option("--split", a->split, "split name (datasets_scripts/splits/NAME.txt) or file")->capture_default_str();
+  train->add_option("--dataset", a->dataset, "a prepared dataset (`jgpm data cycles`) instead of --split");
+  train->add_option("--data", a->data, "data root (default: $JGPM_DATA, ./data/cmu, ../shared/data/cmu)");
+  train->add_option("--learning", a->learning, "full-batch L-BFGS or topology-aware local learning")
+      ->check(CLI::IsMember({"full", "local"}))
+      ->capture_default_str();
+  train->add_option("--seed", a->seed, "random seed (local learning)")->capture_default_str();
+  train->add_option("--threads", a->threads, "linear-algebra threads (0: all cores)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  train->add_option("--max-iterations", a->max_iterations, "full learning: L-BFGS iteration cap")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  train->add_option("--topology-sigma2", a->sigma2, "sigma^2 of the LLE topology energy")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  train->callback([a] { RunTrain(*a); });
+
+  auto plot_model = std::make_shared<std::string>();
+  auto plot_out = std::make_shared<std::string>();
+  CLI::App* plot = app.add_subcommand("plot", "Pictures of trained models");
+  plot->require_subcommand(1);
+  CLI::App* latent = plot->add_subcommand("latent", "Latent points and predictive variance slices (PNG)");
+  latent->add_option("MODEL", *plot_model, "model file")->required();
+  latent->add_option("--out", *plot_out, "PNG to write")->required();
+  latent->callback([plot_model, plot_out] {
+    const auto model = ReadModelFile(*plot_model);
+    PlotLatentSpace(*model, *plot_out);
+    std::printf("wrote %s\n", plot_out->c_str());
+  });
+}
+
+}  // namespace jgpm::cli
