@@ -174,7 +174,7 @@ std::string FormatAmc(const Motion& motion, const Skeleton& skeleton) {
 }
 
 void WriteAmc(const std::filesystem::path& path, const Motion& motion, const Skeleton& skeleton) {
-  WriteTextFileAtomic(path, FormatAmc(motion, skeleton));
+  WriteFileAtomic(path, FormatAmc(motion, skeleton));
 }
 
 }  // namespace jgpm

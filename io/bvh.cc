@@ -275,7 +275,7 @@ std::string FormatBvh(const Bvh& bvh) {
 }
 
 void WriteBvh(const std::filesystem::path& path, const Bvh& bvh) {
-  WriteTextFileAtomic(path, FormatBvh(bvh));
+  WriteFileAtomic(path, FormatBvh(bvh));
 }
 
 void ComputeBvhPose(const Bvh& bvh, int frame, Eigen::Matrix3Xd* joints,

@@ -105,7 +105,7 @@ std::string FormatGaitDatasetJson(const GaitDataset& dataset) {
 }
 
 void WriteGaitDataset(const fs::path& path, const GaitDataset& dataset) {
-  WriteTextFileAtomic(path, FormatGaitDatasetJson(dataset));
+  WriteFileAtomic(path, FormatGaitDatasetJson(dataset));
 }
 
 

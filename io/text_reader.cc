@@ -42,7 +42,7 @@ std::string ReadTextFile(const fs::path& path, const std::string& what) {
   return text;
 }
 
-void WriteTextFileAtomic(const fs::path& path, const std::string& text) {
+void WriteFileAtomic(const fs::path& path, const std::string& text) {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(parent, ec)) {

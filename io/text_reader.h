@@ -19,9 +19,9 @@ std::string ReadTextFile(const std::filesystem::path& path, const std::string& w
 // InputError when `path` is missing or a directory.
 void CheckInputFile(const std::filesystem::path& path, const std::string& what);
 
-// Writes `text` to `path` atomically (temporary file in the same folder, then rename), so
+// Writes `text` (any bytes) to `path` atomically (temporary file in the same folder, then rename), so
 // a failure never leaves a half-written or clobbered file. InputError on failure.
-void WriteTextFileAtomic(const std::filesystem::path& path, const std::string& text);
+void WriteFileAtomic(const std::filesystem::path& path, const std::string& text);
 
 // Splits a line at blanks (spaces, tabs).
 std::vector<std::string_view> SplitBlanks(std::string_view line);

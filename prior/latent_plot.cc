@@ -123,7 +123,7 @@ void PlotLatentSpace(const GaitModel& model, const std::filesystem::path& png,
 
   std::vector<uchar> bytes;
   if (!cv::imencode(".png", image, bytes)) ThrowInputError(png.string(), "PNG encoding failed");
-  WriteTextFileAtomic(png, std::string(bytes.begin(), bytes.end()));
+  WriteFileAtomic(png, std::string(bytes.begin(), bytes.end()));
 }
 
 }  // namespace jgpm

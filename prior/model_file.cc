@@ -120,7 +120,7 @@ std::string FormatModelFile(const GaitModelData& data) {
 }
 
 void WriteModelFile(const std::filesystem::path& path, const GaitModel& model) {
-  WriteTextFileAtomic(path, FormatModelFile(model.data()));
+  WriteFileAtomic(path, FormatModelFile(model.data()));
 }
 
 std::unique_ptr<GaitModel> ParseModelFile(const std::string& text, const std::string& source) {

@@ -1,5 +1,7 @@
 // The `jgpm` command end to end: exit codes, one-line errors naming file:line, and the
 // data subcommands on real trials.
+#include <fstream>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -26,7 +28,7 @@ Result Jgpm(const std::string& arguments) {
 int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(JgpmCli, HelpOnEverySubcommand) {
-  for (const char* command : {"", "data", "data info", "data convert", "data cycles"}) {
+  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent"}) {
     const Result r = Jgpm(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command << r.err;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << command;
@@ -146,6 +148,45 @@ TEST(JgpmCli, CyclesOnTheDefaultSplit) {
     EXPECT_EQ(trial["poses"].size(), 30u);
     EXPECT_GT(trial["cycle"]["end_frame"].get<int>(), trial["cycle"]["start_frame"].get<int>());
   }
+}
+
+// `jgpm train` for every model kind on the default split (few iterations: the point is
+// the command, the file and its reload), then `jgpm plot latent` on one of them.
+TEST(JgpmCli, TrainEveryKindAndPlot) {
+  test::TempDir dir;
+  for (const char* kind : {"pca", "gplvm", "gpdm", "bgpdm", "llgpdm", "jgpm", "mljgpm-torus", "mljgpm-cyl"}) {
+    const fs::path model = dir.path() / (std::string(kind) + ".json");
+    const Result r = Jgpm(std::string("train --model ") + kind + " --max-iterations 3 --data " +
+                          test::CmuRoot().string() + " --out " + model.string());
+    ASSERT_EQ(r.status, 0) << kind << "\n" << r.err;
+    EXPECT_NE(r.out.find("wrote " + model.string()), std::string::npos) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(ReadTextFile(model, "json"));
+    EXPECT_EQ(j["model"]["kind"], kind);
+    const size_t expected = std::string(kind).rfind("mljgpm", 0) == 0 ? 1800 : 600;
+    EXPECT_EQ(j["model"]["latent"].size(), expected) << kind;
+  }
+  const fs::path png = dir.path() / "latent.png";
+  const Result r = Jgpm("plot latent " + (dir.path() / "mljgpm-torus.json").string() + " --out " + png.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(png, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_GT(bytes.size(), 10000u);
+}
+
+TEST(JgpmCli, TrainAndPlotBadInput) {
+  test::TempDir dir;
+  Result r = Jgpm("train --model svm --out " + (dir.path() / "m.json").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--model svm: expected one of pca, gplvm"), std::string::npos) << r.err;
+  r = Jgpm("train --learning sideways --out x.json");
+  EXPECT_EQ(r.status, 2);
+  const fs::path bad = dir.Write("bad.json", "{\"format\": \"jgpm-model\", \"version\": 99}");
+  r = Jgpm("plot latent " + bad.string() + " --out " + (dir.path() / "p.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("version 99 is not supported"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "p.png"));
+  EXPECT_FALSE(fs::exists(dir.path() / "m.json"));
 }
 
 TEST(JgpmCli, CyclesWithoutDataListsThePlacesTried) {

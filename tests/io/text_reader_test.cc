@@ -92,20 +92,20 @@ TEST(SplitBlanks, SplitsOnSpacesAndTabs) {
   EXPECT_EQ(tokens[1], "bb");
 }
 
-TEST(WriteTextFileAtomic, WritesAndReplaces) {
+TEST(WriteFileAtomic, WritesAndReplaces) {
   TempDir dir;
   const auto path = dir.path() / "out.txt";
-  WriteTextFileAtomic(path, "first");
-  WriteTextFileAtomic(path, "second");
+  WriteFileAtomic(path, "first");
+  WriteFileAtomic(path, "second");
   EXPECT_EQ(ReadTextFile(path, "text"), "second");
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out.txt.tmp-jgpm"));
 }
 
-TEST(WriteTextFileAtomic, MissingFolderIsAnErrorAndLeavesNothing) {
+TEST(WriteFileAtomic, MissingFolderIsAnErrorAndLeavesNothing) {
   TempDir dir;
-  ExpectInputError([&] { WriteTextFileAtomic(dir.path() / "no" / "out.txt", "x"); },
+  ExpectInputError([&] { WriteFileAtomic(dir.path() / "no" / "out.txt", "x"); },
                    {"out.txt", "does not exist"});
-  ExpectInputError([&] { WriteTextFileAtomic(dir.path(), "x"); }, {"is a directory"});
+  ExpectInputError([&] { WriteFileAtomic(dir.path(), "x"); }, {"is a directory"});
 }
 
 TEST(Quote, ShortensAndMasksControlCharacters) {

@@ -1,0 +1,86 @@
+// Figures for the prior layer: the tracker evaluates the mean pose plus forward kinematics
+// (and log p(x|M)) for every particle, so their cost per latent point matters. The model
+// is an ML-JGPM (1800 latent points) on the default training split; its quality does not
+// change these costs, so it is trained for a few iterations only.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "io/data_root.h"
+#include "io/gait_dataset.h"
+#include "io/text_reader.h"
+#include "prior/cholesky.h"
+#include "prior/train.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+const GaitModel& Model() {
+  static const std::unique_ptr<GaitModel> model = [] {
+    SetLinearAlgebraThreads(1);
+    const GaitDataset dataset =
+        PrepareGaitDataset(test::CmuRoot(), "train", test::SplitTrials("train"), GaitCycleOptions{});
+    TrainingOptions options;
+    options.kind = ModelKind::kMljgpmTorus;
+    options.full.max_iterations = 2;
+    options.threads = 1;
+    return TrainGaitModel(dataset, {"35_01", ReadTextFile(test::CmuRoot() / "subjects/35/35.asf", "asf")}, options);
+  }();
+  return *model;
+}
+
+std::vector<Eigen::Vector3d> Queries(const GaitModel& model) {
+  std::mt19937 random(1);
+  std::normal_distribution<double> noise(0, 0.1);
+  std::vector<Eigen::Vector3d> queries;
+  for (int i = 0; i < 256; ++i) {
+    queries.push_back(model.latent().row((i * 37) % model.NumPoints()).transpose() +
+                      Eigen::Vector3d(noise(random), noise(random), noise(random)));
+  }
+  return queries;
+}
+
+void BM_MeanPoseAndKinematics(benchmark::State& state) {
+  const GaitModel& model = Model();
+  const auto queries = Queries(model);
+  Eigen::VectorXd pose;
+  Eigen::Matrix3Xd joints;
+  size_t i = 0;
+  for (auto _ : state) {
+    model.Predict(queries[i++ % queries.size()], &pose, nullptr);
+    model.JointPositions(pose, &joints);
+    benchmark::DoNotOptimize(joints.data());
+  }
+  state.counters["latent_points"] = model.NumPoints();
+}
+BENCHMARK(BM_MeanPoseAndKinematics)->Unit(benchmark::kMicrosecond);
+
+void BM_MeanPoseVarianceAndKinematics(benchmark::State& state) {
+  const GaitModel& model = Model();
+  const auto queries = Queries(model);
+  Eigen::VectorXd pose;
+  Eigen::Matrix3Xd joints;
+  double variance;
+  size_t i = 0;
+  for (auto _ : state) {
+    model.Predict(queries[i++ % queries.size()], &pose, &variance);
+    model.JointPositions(pose, &joints);
+    benchmark::DoNotOptimize(joints.data());
+  }
+}
+BENCHMARK(BM_MeanPoseVarianceAndKinematics)->Unit(benchmark::kMicrosecond);
+
+void BM_LogPriorWithGradient(benchmark::State& state) {
+  const GaitModel& model = Model();
+  const auto queries = Queries(model);
+  Eigen::Vector3d gradient;
+  size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.LogPrior(queries[i++ % queries.size()], &gradient));
+}
+BENCHMARK(BM_LogPriorWithGradient)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace jgpm
+
+BENCHMARK_MAIN();
