@@ -75,13 +75,25 @@ class ProgressReporter : public ceres::IterationCallback {
       p.seconds_left = p.rate > 0 ? (options_.max_iterations - summary.iteration) / p.rate : 0;
       options_.progress(p);
     }
+    history_.push_back(summary.cost);
+    const int window = options_.plateau_window;
+    if (static_cast<int>(history_.size()) > window) {
+      const double before = history_[history_.size() - 1 - window];
+      if (before - summary.cost < options_.plateau_tolerance * std::abs(summary.cost)) {
+        converged_ = true;
+        return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+      }
+    }
     return ceres::SOLVER_CONTINUE;
   }
+
+  bool converged_ = false;
 
  private:
   const FullTrainingOptions& options_;
   const ObjectiveFunction& function_;
   Clock::time_point start_, last_report_;
+  std::vector<double> history_;
 };
 
 }  // namespace
@@ -97,7 +109,7 @@ TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
   ceres::GradientProblemSolver::Options solver;
   solver.line_search_direction_type = ceres::LBFGS;
   solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
+  solver.function_tolerance = 1e-12;  // the plateau test in ProgressReporter decides
   solver.gradient_tolerance = options.gradient_tolerance;
   solver.parameter_tolerance = 1e-12;
   solver.logging_type = ceres::SILENT;
@@ -117,7 +129,11 @@ TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
   summary.final_objective = ceres_summary.final_cost;
   summary.max_jitter = function->max_jitter_;
   summary.message = ceres_summary.message;
-  if (ceres_summary.termination_type == ceres::CONVERGENCE) {
+  if (reporter.converged_) {
+    summary.termination = "converged";
+    summary.message = "objective improved by less than " + std::to_string(options.plateau_tolerance) +
+                      " (relative) over " + std::to_string(options.plateau_window) + " iterations";
+  } else if (ceres_summary.termination_type == ceres::CONVERGENCE) {
     summary.termination = "converged";
   } else if (ceres_summary.termination_type == ceres::NO_CONVERGENCE) {
     summary.termination = "no convergence";

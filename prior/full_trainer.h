@@ -9,7 +9,11 @@ namespace jgpm {
 
 struct FullTrainingOptions {
   int max_iterations = 5000;           // L-BFGS iterations
-  double function_tolerance = 1e-7;    // stop when |df| <= tol * |f| in an iteration
+  // Converged when the objective improved by less than plateau_tolerance * |f| over the
+  // last plateau_window iterations (L-BFGS on these objectives creeps for thousands of
+  // iterations at a few nats each; a per-iteration test would never fire).
+  int plateau_window = 50;
+  double plateau_tolerance = 1e-4;
   double gradient_tolerance = 1e-8;    // or max |gradient| below this
   double progress_interval_s = 1.0;    // seconds between progress reports
   ProgressCallback progress;

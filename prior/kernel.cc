@@ -9,16 +9,16 @@ Kernel::Kernel(Kind kind, const Eigen::VectorXd& log_params)
   JGPM_CHECK(log_params.size() == NumParams());
 }
 
-Eigen::MatrixXd Kernel::RbfFactor(const Eigen::MatrixXd& x) const {
+Eigen::MatrixXd Kernel::RbfPart(const Eigen::MatrixXd& x) const {
   const Eigen::VectorXd norms = x.rowwise().squaredNorm();
   Eigen::MatrixXd d2 = -2.0 * x * x.transpose();
   d2.colwise() += norms;
   d2.rowwise() += norms.transpose();
-  return (-0.5 * inverse_width() * d2.array().max(0.0)).exp().matrix();
+  return signal_variance() * (-0.5 * inverse_width() * d2.array().max(0.0)).exp().matrix();
 }
 
-Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x) const {
-  Eigen::MatrixXd k = signal_variance() * RbfFactor(x);
+Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const {
+  Eigen::MatrixXd k = rbf;
   if (kind_ == Kind::kRbfLinear) k.noalias() += linear_variance() * x * x.transpose();
   k.diagonal().array() += noise_variance();
   return k;
@@ -35,11 +35,11 @@ double Kernel::Self(const Eigen::Vector3d& x_star) const {
   return signal_variance() + linear_variance() * x_star.squaredNorm();
 }
 
-void Kernel::AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g, Eigen::MatrixXd* dx,
+void Kernel::AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g,
+                         const Eigen::MatrixXd& rbf, Eigen::MatrixXd* dx,
                          Eigen::VectorXd* dlog_params) const {
   JGPM_CHECK(g.rows() == x.rows() && g.cols() == x.rows() && dx->rows() == x.rows());
-  JGPM_CHECK(dlog_params->size() == NumParams());
-  const Eigen::MatrixXd rbf = signal_variance() * RbfFactor(x);
+  JGPM_CHECK(rbf.rows() == x.rows() && dlog_params->size() == NumParams());
   // H = G o K_rbf. dK_ij/dx_i = -b2 K_rbf_ij (x_i - x_j), and K is symmetric, so
   // dL/dx_i = -2 b2 (x_i sum_j H_ij - (H X)_i).
   const Eigen::MatrixXd h = g.cwiseProduct(rbf);

@@ -27,22 +27,23 @@ class Kernel {
   // The noise variance on the diagonal: 1 / b3 (or 1 / a4).
   double noise_variance() const { return 1.0 / p_[NumParams() - 1]; }
 
-  // K(X) for the rows of X, noise included on the diagonal.
-  Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x) const;
+  // The RBF part b1 exp(-b2/2 |x_i - x_j|^2) of K(X): computed once, shared by Matrix
+  // and AddGradient (its N^2 exponentials are a large part of an evaluation).
+  Eigen::MatrixXd RbfPart(const Eigen::MatrixXd& x) const;
+  // K(X) for the rows of X, noise included on the diagonal; `rbf` is RbfPart(x).
+  Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const;
+  Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x) const { return Matrix(x, RbfPart(x)); }
   // k(x_i, x*) for every row x_i of X (no noise: x* is a new point).
   Eigen::VectorXd Cross(const Eigen::MatrixXd& x, const Eigen::Vector3d& x_star) const;
   // k(x*, x*) without noise.
   double Self(const Eigen::Vector3d& x_star) const;
 
-  // Chain rule through K: given G = dL/dK (symmetric, for K = Matrix(x)), adds dL/dX to
-  // `dx` and dL/d(log params) to `dlog_params`.
-  void AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g, Eigen::MatrixXd* dx,
-                   Eigen::VectorXd* dlog_params) const;
+  // Chain rule through K: given G = dL/dK (symmetric, for K = Matrix(x)) and
+  // rbf = RbfPart(x), adds dL/dX to `dx` and dL/d(log params) to `dlog_params`.
+  void AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g, const Eigen::MatrixXd& rbf,
+                   Eigen::MatrixXd* dx, Eigen::VectorXd* dlog_params) const;
 
  private:
-  // exp(-w/2 |x_i - x_j|^2) for all rows.
-  Eigen::MatrixXd RbfFactor(const Eigen::MatrixXd& x) const;
-
   Kind kind_;
   Eigen::VectorXd log_params_;
   Eigen::VectorXd p_;  // exp(log_params_)

@@ -33,8 +33,8 @@ bool LocalTrainingOptions::Check(std::string* why) const {
   else if (!(latent_step > 0) || !(hyper_step >= 0)) *why = "step sizes must be positive";
   else if (max_steps < 1) *why = "max_steps must be >= 1";
   else if (evaluation_interval < 0) *why = "evaluation_interval must be >= 0";
-  else if (!(tolerance >= 0)) *why = "tolerance must be >= 0";
-  else if (patience < 1) *why = "patience must be >= 1";
+  else if (!(plateau_tolerance >= 0)) *why = "plateau_tolerance must be >= 0";
+  else if (plateau_window < 1) *why = "plateau_window must be >= 1";
   else return true;
   return false;
 }
@@ -110,7 +110,7 @@ TrainingSummary TrainLocal(const GpObjective& objective,
   GpParameters best = *params;
   double best_value = full.total;
   GpParameters gradient;
-  int quiet = 0;
+  std::vector<double> history{best_value};
   auto last_report = start;
   summary.termination = "no convergence";
   summary.message = "maximum number of steps reached";
@@ -147,12 +147,11 @@ TrainingSummary TrainLocal(const GpObjective& objective,
       summary.message = full.why;
       break;
     }
-    const double improvement = (best_value - full.total) / std::max(1.0, std::abs(best_value));
     if (full.total < best_value) {
       best_value = full.total;
       best = *params;
     }
-    quiet = improvement < options.tolerance ? quiet + 1 : 0;
+    history.push_back(best_value);
     const auto now = Clock::now();
     const double elapsed = std::chrono::duration<double>(now - start).count();
     if (options.progress &&
@@ -169,10 +168,13 @@ TrainingSummary TrainLocal(const GpObjective& objective,
       p.seconds_left = (options.max_steps - step) / p.rate;
       options.progress(p);
     }
-    if (quiet >= options.patience) {
+    const int window = options.plateau_window;
+    if (static_cast<int>(history.size()) > window &&
+        history[history.size() - 1 - window] - best_value < options.plateau_tolerance * std::abs(best_value)) {
       summary.termination = "converged";
-      summary.message = "full objective improved by less than " + std::to_string(options.tolerance) +
-                        " (relative) in " + std::to_string(options.patience) + " evaluations";
+      summary.message = "objective improved by less than " + std::to_string(options.plateau_tolerance) +
+                        " (relative) over " + std::to_string(window) + " evaluations of " +
+                        std::to_string(interval) + " steps";
       break;
     }
   }

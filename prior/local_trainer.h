@@ -11,8 +11,9 @@
 // than Adam steps after the same time.
 //
 // Every `evaluation_interval` steps the full objective is evaluated (value only); the
-// best parameters seen are kept, and learning stops when `patience` evaluations in a
-// row improved it by less than `tolerance` (relative).
+// best parameters seen are kept, and learning has converged when the best objective
+// improved by less than plateau_tolerance * |f| over the last plateau_window evaluations
+// (the same test as full learning's, over evaluations instead of iterations).
 #pragma once
 
 #include <cstdint>
@@ -33,8 +34,8 @@ struct LocalTrainingOptions {
   double hyper_step = 0.001;                // and for log hyper-parameters
   int max_steps = 200000;
   int evaluation_interval = 0;              // 0: one epoch, N / M steps, at least 100
-  double tolerance = 1e-3;                  // relative improvement per evaluation
-  int patience = 3;
+  int plateau_window = 5;
+  double plateau_tolerance = 1e-4;
   uint64_t seed = 1;
   double progress_interval_s = 1.0;
   ProgressCallback progress;

@@ -89,8 +89,9 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   // Mapping: G = dL/dK = 1/2 (D K^-1 - A A^T) with A = K^-1 Z.
   {
     const Kernel kernel(Kernel::Kind::kRbf, p.log_beta);
+    const Eigen::MatrixXd rbf = kernel.RbfPart(x);
     Cholesky chol;
-    if (!chol.Compute(kernel.Matrix(x))) {
+    if (!chol.Compute(kernel.Matrix(x, rbf))) {
       value.why = "mapping kernel: " + chol.why();
       return value;
     }
@@ -103,7 +104,7 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
       Eigen::MatrixXd g = 0.5 * d * chol.Inverse();
       g.noalias() -= 0.5 * a * a.transpose();
       Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
-      kernel.AddGradient(x, g, &dx, &dbeta);
+      kernel.AddGradient(x, g, rbf, &dx, &dbeta);
       gradient->log_beta += dbeta;
       if (terms_.channel_scales) gradient->log_w += za - Eigen::VectorXd::Constant(d, m);
     }
@@ -141,8 +142,9 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
         x_out.row(k) = x.row(out[k]);
       }
       const Kernel kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
+      const Eigen::MatrixXd rbf = kernel.RbfPart(x_in);
       Cholesky chol;
-      if (!chol.Compute(kernel.Matrix(x_in))) {
+      if (!chol.Compute(kernel.Matrix(x_in, rbf))) {
         value.why = "dynamics kernel: " + chol.why();
         return value;
       }
@@ -156,7 +158,7 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
         g *= lambda;
         Eigen::MatrixXd dx_in = Eigen::MatrixXd::Zero(pairs, 3);
         Eigen::VectorXd dalpha = Eigen::VectorXd::Zero(4);
-        kernel.AddGradient(x_in, g, &dx_in, &dalpha);
+        kernel.AddGradient(x_in, g, rbf, &dx_in, &dalpha);
         gradient->log_alpha += dalpha;
         for (int k = 0; k < pairs; ++k) {
           dx.row(in[k]) += dx_in.row(k);

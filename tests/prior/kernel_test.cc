@@ -20,7 +20,7 @@ void CheckGradient(Kernel::Kind kind, const Eigen::VectorXd& log_params) {
   const Kernel kernel(kind, log_params);
   Eigen::MatrixXd dx = Eigen::MatrixXd::Zero(n, 3);
   Eigen::VectorXd dp = Eigen::VectorXd::Zero(kernel.NumParams());
-  kernel.AddGradient(x, g, &dx, &dp);
+  kernel.AddGradient(x, g, kernel.RbfPart(x), &dx, &dp);
   const double h = 1e-6;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d) {

@@ -70,8 +70,7 @@ void RunTrain(const TrainArguments& a) {
   const std::unique_ptr<GaitModel> model = TrainGaitModel(dataset, skeleton, options);
   if (isatty(fileno(stderr))) std::fputc('\n', stderr);
   WriteModelFile(a.out, *model);
-  std::printf("%s\nwrote %s (%d latent points, %d channels)\n", model->data().summary.BriefReport().c_str(),
-              a.out.c_str(), model->NumPoints(), model->NumChannels());
+  std::printf("%swrote %s\n", DescribeModel(*model).c_str(), a.out.c_str());
 }
 
 }  // namespace
@@ -98,6 +97,13 @@ void AddPriorCommands(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   train->callback([a] { RunTrain(*a); });
+
+  auto info_model = std::make_shared<std::string>();
+  CLI::App* model_command = app.add_subcommand("model", "Trained gait models");
+  model_command->require_subcommand(1);
+  CLI::App* info = model_command->add_subcommand("info", "Kind, hyper-parameters, training summary and reconstruction error");
+  info->add_option("MODEL", *info_model, "model file")->required();
+  info->callback([info_model] { std::fputs(DescribeModel(*ReadModelFile(*info_model)).c_str(), stdout); });
 
   auto plot_model = std::make_shared<std::string>();
   auto plot_out = std::make_shared<std::string>();
