@@ -83,4 +83,13 @@ void SetLinearAlgebraThreads(int threads) {
   if (threads > 0) openblas_set_num_threads(threads);
 }
 
+namespace {
+// Callers check for NaN/inf before factorising; LAPACKE's own full-matrix scans would only
+// repeat that on every call.
+const bool kNanCheckOff = [] {
+  LAPACKE_set_nancheck(0);
+  return true;
+}();
+}  // namespace
+
 }  // namespace jgpm

@@ -100,6 +100,7 @@ std::vector<int> HeuristicTour(const Eigen::MatrixXd& d) {
 }
 
 std::vector<int> Tour(const Eigen::MatrixXd& d) {
+  JGPM_CHECK(d.allFinite());  // NaN would leave the dynamic programme without a path
   return d.rows() <= kMaxExactNodes ? ExactTour(d) : HeuristicTour(d);
 }
 

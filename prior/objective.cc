@@ -84,6 +84,10 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
     x.row(k) = p.x.row(subset[k]);
     z.row(k) = y_.row(subset[k]).cwiseProduct(w.transpose());
   }
+  if (!x.allFinite() || !z.allFinite()) {
+    value.why = "non-finite latent points, channel scales or data";
+    return value;
+  }
   Eigen::MatrixXd dx = Eigen::MatrixXd::Zero(m, 3);
 
   // Mapping: G = dL/dK = 1/2 (D K^-1 - A A^T) with A = K^-1 Z.

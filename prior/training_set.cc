@@ -36,6 +36,7 @@ TrainingSet MakeTrainingSet(const GaitDataset& dataset, const std::vector<double
       for (int pose = 0; pose < poses; ++pose) set.y_deg.row(set.Row(layer, gait, pose)) = scaled.row(pose);
     }
   }
+  if (!set.y_deg.allFinite()) ThrowInputError("dataset " + dataset.split, "holds non-finite poses");
   set.mean = set.y_deg.colwise().mean();
   const Eigen::MatrixXd centred = set.y_deg.rowwise() - set.mean;
   set.scale = (centred.colwise().squaredNorm() / n).array().sqrt().max(1e-3).matrix();

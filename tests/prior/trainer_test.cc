@@ -1,0 +1,137 @@
+// Both trainers on a small synthetic problem: they improve the objective, report how
+// they ended, call progress, and refuse non-finite problems.
+#include <gtest/gtest.h>
+
+#include "prior/full_trainer.h"
+#include "prior/local_trainer.h"
+#include "prior/model_kind.h"
+#include "prior/topology.h"
+#include "prior/training_set.h"
+#include "prior_test_support.h"
+
+namespace jgpm {
+namespace {
+
+struct Problem {
+  TrainingSet set;
+  Topology topology;
+  std::unique_ptr<GpObjective> objective;
+  GpParameters start;
+};
+
+Problem MakeProblem(ModelKind kind, bool nan_in_data = false) {
+  Problem p;
+  const ModelSpec spec = SpecFor(kind, 5);
+  p.set = MakeTrainingSet(test::SyntheticGaitDataset(4, 8, 5), spec.layer_scales);
+  p.topology = MakeTopology(p.set, TopologyOptions{});
+  std::vector<Sequence> sequences;
+  for (int s = 0; s < p.set.NumLayers() * p.set.NumGaits(); ++s) sequences.push_back({8 * s, 8});
+  Eigen::MatrixXd y = p.set.y;
+  if (nan_in_data) y(3, 2) = std::nan("");
+  p.objective = std::make_unique<GpObjective>(y, sequences, &p.topology, spec.terms);
+  p.start.x = p.topology.coordinates;
+  p.start.log_beta = Eigen::Vector3d(0, 0, std::log(100.0));
+  p.start.log_alpha = Eigen::Vector4d(0, 0, std::log(0.1), std::log(1e4));
+  p.start.log_w = Eigen::VectorXd::Zero(5);
+  return p;
+}
+
+TEST(FullTrainer, ConvergesAndReports) {
+  Problem p = MakeProblem(ModelKind::kJgpm);
+  FullTrainingOptions options;
+  options.progress_interval_s = 0;
+  // This smooth synthetic data keeps paying a little for ever larger b1; a looser plateau.
+  options.plateau_tolerance = 1e-2;
+  int calls = 0, last_iteration = -1;
+  options.progress = [&](const TrainingProgress& progress) {
+    ++calls;
+    EXPECT_GT(progress.iteration, last_iteration);
+    last_iteration = progress.iteration;
+    EXPECT_EQ(progress.stage, "full");
+  };
+  GpParameters x = p.start;
+  const TrainingSummary s = TrainFull(*p.objective, &x, options);
+  EXPECT_EQ(s.termination, "converged") << s.BriefReport();
+  EXPECT_LT(s.final_objective, s.initial_objective);
+  EXPECT_NEAR(s.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(s.final_objective));
+  EXPECT_GT(calls, 1);
+  EXPECT_NE(s.BriefReport().find("full learning: converged after"), std::string::npos);
+  // The held hyper-parameters did not move.
+  EXPECT_EQ(x.log_beta[1], p.start.log_beta[1]);
+  EXPECT_EQ(x.log_alpha[3], p.start.log_alpha[3]);
+}
+
+TEST(FullTrainer, PlateauWindowStopsEarly) {
+  Problem p = MakeProblem(ModelKind::kGpdm);
+  FullTrainingOptions options;
+  options.plateau_window = 5;
+  options.plateau_tolerance = 10.0;  // any progress below 10 |f| in 5 iterations counts as a plateau
+  GpParameters x = p.start;
+  const TrainingSummary s = TrainFull(*p.objective, &x, options);
+  EXPECT_EQ(s.termination, "converged");
+  EXPECT_EQ(s.iterations, 5);
+}
+
+TEST(FullTrainer, NonFiniteDataIsANumericalFailure) {
+  Problem p = MakeProblem(ModelKind::kGplvm, /*nan_in_data=*/true);
+  GpParameters x = p.start;
+  x.log_alpha.resize(0);
+  x.log_w.resize(0);
+  const TrainingSummary s = TrainFull(*p.objective, &x, FullTrainingOptions{});
+  EXPECT_EQ(s.termination, "numerical failure");
+  EXPECT_FALSE(s.usable());
+}
+
+TEST(LocalTrainer, ImprovesDeterministicallyAndReports) {
+  Problem p = MakeProblem(ModelKind::kMljgpmTorus);
+  LocalTrainingOptions options;
+  options.max_neighbourhood_fraction = 0.3;
+  options.max_steps = 2000;
+  options.progress_interval_s = 0;
+  int calls = 0;
+  options.progress = [&](const TrainingProgress& progress) {
+    ++calls;
+    EXPECT_EQ(progress.stage, "local");
+  };
+  const auto neighbourhoods =
+      LocalNeighbourhoods(p.set, p.topology.coordinates, LocalNeighbourhoodSize(p.set.NumPoints(), options));
+  EXPECT_EQ(LocalNeighbourhoodSize(96, options), 28);  // min(120, 30% of 96)
+  GpParameters a = p.start, b = p.start;
+  const TrainingSummary s = TrainLocal(*p.objective, neighbourhoods, &a, options);
+  TrainLocal(*p.objective, neighbourhoods, &b, options);
+  EXPECT_LT(s.final_objective, s.initial_objective);
+  EXPECT_NEAR(s.final_objective, p.objective->Evaluate(a, nullptr).total, 1e-9 * std::abs(s.final_objective));
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_GT(calls, 0);
+}
+
+// Neighbourhoods: an equal share per layer, each point's own included, compared with a
+// brute-force search over the prior coordinates (ties allowed: the torus is symmetric).
+TEST(LocalTrainer, NeighbourhoodsMatchBruteForce) {
+  Problem p = MakeProblem(ModelKind::kMljgpmTorus);
+  const auto neighbourhoods = LocalNeighbourhoods(p.set, p.topology.coordinates, 12);
+  const Eigen::MatrixXd& t = p.topology.coordinates;
+  for (int i = 0; i < p.set.NumPoints(); i += 5) {
+    const TrainingPoint& point = p.set.points[i];
+    ASSERT_EQ(neighbourhoods[i].size(), 12u);
+    EXPECT_TRUE(std::binary_search(neighbourhoods[i].begin(), neighbourhoods[i].end(), i));
+    for (int layer = 0; layer < 3; ++layer) {
+      const Eigen::RowVector3d query = t.row(p.set.Row(layer, point.gait, point.pose));
+      std::vector<double> all;
+      for (int row = p.set.Row(layer, 0, 0); row < p.set.Row(layer + 1, 0, 0); ++row) {
+        all.push_back((t.row(row) - query).squaredNorm());
+      }
+      std::sort(all.begin(), all.end());
+      int chosen = 0;
+      for (int row : neighbourhoods[i]) {
+        if (p.set.points[row].layer != layer) continue;
+        ++chosen;
+        EXPECT_LE((t.row(row) - query).squaredNorm(), all[3] + 1e-12) << i;  // among the 4 nearest
+      }
+      EXPECT_EQ(chosen, 4) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace jgpm
