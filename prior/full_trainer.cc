@@ -75,6 +75,8 @@ class ProgressReporter : public ceres::IterationCallback {
       p.seconds_left = p.rate > 0 ? (options_.max_iterations - summary.iteration) / p.rate : 0;
       options_.progress(p);
     }
+    stopped_ = options_.budget.Exhausted(elapsed);
+    if (!stopped_.empty()) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
     history_.push_back(summary.cost);
     const int window = options_.plateau_window;
     if (static_cast<int>(history_.size()) > window) {
@@ -88,6 +90,7 @@ class ProgressReporter : public ceres::IterationCallback {
   }
 
   bool converged_ = false;
+  std::string stopped_;  // why the budget ended training, if it did
 
  private:
   const FullTrainingOptions& options_;
@@ -129,7 +132,10 @@ TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
   summary.final_objective = ceres_summary.final_cost;
   summary.max_jitter = function->max_jitter_;
   summary.message = ceres_summary.message;
-  if (reporter.converged_) {
+  if (!reporter.stopped_.empty()) {
+    summary.termination = "stopped";
+    summary.message = reporter.stopped_;
+  } else if (reporter.converged_) {
     summary.termination = "converged";
     summary.message = "objective improved by less than " + std::to_string(options.plateau_tolerance) +
                       " (relative) over " + std::to_string(options.plateau_window) + " iterations";

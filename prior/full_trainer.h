@@ -17,6 +17,7 @@ struct FullTrainingOptions {
   double gradient_tolerance = 1e-8;    // or max |gradient| below this
   double progress_interval_s = 1.0;    // seconds between progress reports
   ProgressCallback progress;
+  TrainingBudget budget;
 };
 
 // Optimises `params` in place; the summary says how it ended.

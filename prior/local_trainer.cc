@@ -177,6 +177,12 @@ TrainingSummary TrainLocal(const GpObjective& objective,
                         std::to_string(interval) + " steps";
       break;
     }
+    // Checked at evaluations only, so the best parameters are up to date when it stops.
+    if (const std::string why = options.budget.Exhausted(elapsed); !why.empty()) {
+      summary.termination = "stopped";
+      summary.message = why;
+      break;
+    }
   }
   *params = best;
   summary.final_objective = best_value;

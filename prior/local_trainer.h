@@ -39,6 +39,7 @@ struct LocalTrainingOptions {
   uint64_t seed = 1;
   double progress_interval_s = 1.0;
   ProgressCallback progress;
+  TrainingBudget budget;
 
   bool Check(std::string* why) const;
 };

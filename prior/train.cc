@@ -93,15 +93,18 @@ std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
   if (spec.terms.channel_scales) data.params.log_w = Eigen::VectorXd::Zero(set.NumChannels());
 
   const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);
+  const bool budget_set = options.budget.max_seconds > 0 || options.budget.interrupted;
   if (options.learning == Learning::kFull) {
     FullTrainingOptions full = options.full;
     if (options.progress) full.progress = options.progress;
+    if (budget_set) full.budget = options.budget;
     data.learning = "full";
     data.summary = TrainFull(objective, &data.params, full);
   } else {
     LocalTrainingOptions local = options.local;
     local.seed = options.seed;
     if (options.progress) local.progress = options.progress;
+    if (budget_set) local.budget = options.budget;
     // Neighbourhoods over the prior's coordinates where there is a topology, else over
     // the initial latent points.
     const Eigen::MatrixXd& where = spec.topology ? topology.coordinates : data.params.x;

@@ -23,6 +23,7 @@ struct TrainingOptions {
   FullTrainingOptions full;
   LocalTrainingOptions local;
   ProgressCallback progress;         // overrides full.progress and local.progress
+  TrainingBudget budget;             // when set, overrides full.budget and local.budget
 
   bool Check(std::string* why) const;
 };

@@ -4,12 +4,23 @@
 
 namespace jgpm {
 
+std::string TrainingBudget::Exhausted(double elapsed_seconds) const {
+  if (interrupted && interrupted->load()) return "interrupted";
+  if (max_seconds > 0 && elapsed_seconds >= max_seconds) {
+    char why[64];
+    std::snprintf(why, sizeof(why), "time budget of %g s used up", max_seconds);
+    return why;
+  }
+  return "";
+}
+
 std::string TrainingSummary::BriefReport() const {
   char line[512];
+  const std::string how = termination == "stopped" ? "stopped (" + message + ")" : termination;
   std::snprintf(line, sizeof(line),
                 "%s learning: %s after %d iterations, objective %.6g -> %.6g, max jitter %.2g, "
                 "%.1f s",
-                learning.c_str(), termination.c_str(), iterations, initial_objective,
+                learning.c_str(), how.c_str(), iterations, initial_objective,
                 final_objective, max_jitter, wall_seconds);
   return line;
 }

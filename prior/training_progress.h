@@ -1,6 +1,7 @@
 // What long-running training reports while it runs and when it ends.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -19,9 +20,21 @@ struct TrainingProgress {
 
 using ProgressCallback = std::function<void(const TrainingProgress&)>;
 
+// When training should end early, keeping what it has learned: a wall-time budget, or an
+// interrupt (the command's Ctrl-C handler sets the flag). Checked once per iteration.
+struct TrainingBudget {
+  double max_seconds = 0;                          // 0: no limit
+  const std::atomic<bool>* interrupted = nullptr;  // may be null
+
+  // Why training must stop now, or "" to go on.
+  std::string Exhausted(double elapsed_seconds) const;
+};
+
 struct TrainingSummary {
   std::string learning;      // "full", "local" or "closed form" (PCA)
-  std::string termination;   // "converged", "no convergence" or "numerical failure"
+  // "converged", "no convergence" (iteration cap), "stopped" (time budget or interrupt)
+  // or "numerical failure"
+  std::string termination;
   std::string message;       // detail from the optimiser
   int iterations = 0;
   int evaluations = 0;       // objective evaluations (local: of the full objective)

@@ -1,5 +1,7 @@
 // Both trainers on a small synthetic problem: they improve the objective, report how
 // they ended, call progress, and refuse non-finite problems.
+#include <atomic>
+
 #include <gtest/gtest.h>
 
 #include "prior/full_trainer.h"
@@ -103,6 +105,45 @@ TEST(LocalTrainer, ImprovesDeterministicallyAndReports) {
   EXPECT_NEAR(s.final_objective, p.objective->Evaluate(a, nullptr).total, 1e-9 * std::abs(s.final_objective));
   EXPECT_EQ(a.x, b.x);
   EXPECT_GT(calls, 0);
+}
+
+// A used-up time budget or an interrupt ends either trainer after its first check, with
+// "stopped", the reason, and parameters whose objective is the one reported.
+TEST(TrainingBudget, StopsBothTrainersAndKeepsTheParameters) {
+  Problem p = MakeProblem(ModelKind::kMljgpmTorus);
+  std::atomic<bool> interrupted{true};
+  for (const bool by_interrupt : {false, true}) {
+    TrainingBudget budget;
+    if (by_interrupt) {
+      budget.interrupted = &interrupted;
+    } else {
+      budget.max_seconds = 1e-9;
+    }
+    const std::string why = by_interrupt ? "interrupted" : "time budget of 1e-09 s used up";
+    EXPECT_EQ(budget.Exhausted(0.5), why);
+
+    FullTrainingOptions full;
+    full.budget = budget;
+    GpParameters x = p.start;
+    const TrainingSummary f = TrainFull(*p.objective, &x, full);
+    EXPECT_EQ(f.termination, "stopped") << f.BriefReport();
+    EXPECT_EQ(f.message, why);
+    EXPECT_LE(f.iterations, 1);
+    EXPECT_NEAR(f.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(f.final_objective));
+
+    LocalTrainingOptions local;
+    local.max_neighbourhood_fraction = 0.3;
+    local.budget = budget;
+    const auto neighbourhoods =
+        LocalNeighbourhoods(p.set, p.topology.coordinates, LocalNeighbourhoodSize(p.set.NumPoints(), local));
+    x = p.start;
+    const TrainingSummary l = TrainLocal(*p.objective, neighbourhoods, &x, local);
+    EXPECT_EQ(l.termination, "stopped") << l.BriefReport();
+    EXPECT_EQ(l.message, why);
+    EXPECT_EQ(l.evaluations, 2);  // the starting point and the first check
+    EXPECT_NEAR(l.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(l.final_objective));
+  }
+  EXPECT_EQ(TrainingBudget{}.Exhausted(1e9), "");
 }
 
 // Neighbourhoods: an equal share per layer, each point's own included, compared with a

@@ -1,5 +1,7 @@
 #include "tracker/cli/prior_commands.h"
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 
@@ -27,8 +29,17 @@ struct TrainArguments {
   uint64_t seed = 1;
   int threads = 0;
   int max_iterations = 5000;
+  double max_time = 0;
   double sigma2 = 0.01;
 };
+
+// The first Ctrl-C (or SIGTERM) ends training early and the model learned so far is still
+// written; the handler then steps aside so a second one kills the process.
+std::atomic<bool> interrupted{false};
+extern "C" void OnInterrupt(int signal) {
+  interrupted = true;
+  std::signal(signal, SIG_DFL);
+}
 
 void PrintProgress(const TrainingProgress& p) {
   std::fprintf(stderr, "%s %7d/%d  objective %.7g  jitter %.1g  %.2f it/s  %.0f s, <= %.0f s left%s",
@@ -48,6 +59,8 @@ void RunTrain(const TrainArguments& a) {
   options.topology_sigma2 = a.sigma2;
   options.full.max_iterations = a.max_iterations;
   options.progress = PrintProgress;
+  options.budget.max_seconds = a.max_time;
+  options.budget.interrupted = &interrupted;
 
   const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
   GaitDataset dataset;
@@ -67,7 +80,12 @@ void RunTrain(const TrainArguments& a) {
   if (skeleton.trial.empty()) ThrowInputError("--split " + a.split, "has no clean gait cycle");
   std::printf("training %s (%s learning) on %d clean gait cycles of %s\n", a.model.c_str(),
               a.learning.c_str(), dataset.NumClean(), dataset.split.c_str());
+  interrupted = false;
+  std::signal(SIGINT, OnInterrupt);
+  std::signal(SIGTERM, OnInterrupt);
   const std::unique_ptr<GaitModel> model = TrainGaitModel(dataset, skeleton, options);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   if (isatty(fileno(stderr))) std::fputc('\n', stderr);
   WriteModelFile(a.out, *model);
   std::printf("%swrote %s\n", DescribeModel(*model).c_str(), a.out.c_str());
@@ -92,6 +110,11 @@ void AddPriorCommands(CLI::App& app) {
       ->capture_default_str();
   train->add_option("--max-iterations", a->max_iterations, "full learning: L-BFGS iteration cap")
       ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  train->add_option("--max-time", a->max_time,
+                    "stop after this many seconds and write the model learned so far (0: no limit; "
+                    "Ctrl-C does the same)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   train->add_option("--topology-sigma2", a->sigma2, "sigma^2 of the LLE topology energy")
       ->check(CLI::PositiveNumber)
