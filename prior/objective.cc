@@ -11,6 +11,33 @@ namespace {
 
 constexpr double kLog2Pi = 1.8378770664093453;
 
+// The Gaussian-process term shared by the mapping and the dynamics:
+//   L = c/2 ln|K| + 1/2 tr(Z^T K^-1 Z),  K = K(X), Z with c columns (no 2 pi term).
+// Sets *a = K^-1 Z. With dx, adds weight * dL/dX to *dx and weight * dL/d(log params) to
+// *dlog_params, through G = dL/dK = 1/2 (c K^-1 - A A^T). False, with `why`, when K cannot
+// be factorised.
+bool GpTerm(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& z, double weight,
+            const char* name, double* value, Eigen::MatrixXd* a, Eigen::MatrixXd* dx,
+            Eigen::VectorXd* dlog_params, double* jitter, std::string* why) {
+  const Eigen::MatrixXd rbf = kernel.RbfPart(x);
+  Cholesky chol;
+  if (!chol.Compute(kernel.Matrix(x, rbf))) {
+    *why = std::string(name) + ": " + chol.why();
+    return false;
+  }
+  *jitter = std::max(*jitter, chol.jitter());
+  *a = chol.Solve(z);
+  const double c = z.cols();
+  *value = 0.5 * c * chol.LogDeterminant() + 0.5 * z.cwiseProduct(*a).sum();
+  if (dx) {
+    Eigen::MatrixXd g = 0.5 * c * chol.Inverse();
+    g.noalias() -= 0.5 * *a * a->transpose();
+    g *= weight;
+    kernel.AddGradient(x, g, rbf, dx, dlog_params);
+  }
+  return true;
+}
+
 }  // namespace
 
 int GpParameters::Size() const {
@@ -90,27 +117,22 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   }
   Eigen::MatrixXd dx = Eigen::MatrixXd::Zero(m, 3);
 
-  // Mapping: G = dL/dK = 1/2 (D K^-1 - A A^T) with A = K^-1 Z.
+  // Mapping.
   {
-    const Kernel kernel(Kernel::Kind::kRbf, p.log_beta);
-    const Eigen::MatrixXd rbf = kernel.RbfPart(x);
-    Cholesky chol;
-    if (!chol.Compute(kernel.Matrix(x, rbf))) {
-      value.why = "mapping kernel: " + chol.why();
+    Eigen::MatrixXd a;
+    Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
+    if (!GpTerm(Kernel(Kernel::Kind::kRbf, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
+                gradient ? &dx : nullptr, &dbeta, &value.jitter, &value.why)) {
       return value;
     }
-    value.jitter = std::max(value.jitter, chol.jitter());
-    const Eigen::MatrixXd a = chol.Solve(z);
-    const Eigen::VectorXd za = (z.cwiseProduct(a)).colwise().sum().transpose();  // per channel
-    value.mapping = 0.5 * d * chol.LogDeterminant() + 0.5 * za.sum() - m * p.log_w.sum() +
-                    0.5 * m * d * kLog2Pi;
+    value.mapping += -m * p.log_w.sum() + 0.5 * m * d * kLog2Pi;
     if (gradient) {
-      Eigen::MatrixXd g = 0.5 * d * chol.Inverse();
-      g.noalias() -= 0.5 * a * a.transpose();
-      Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
-      kernel.AddGradient(x, g, rbf, &dx, &dbeta);
       gradient->log_beta += dbeta;
-      if (terms_.channel_scales) gradient->log_w += za - Eigen::VectorXd::Constant(d, m);
+      if (terms_.channel_scales) {
+        // d/d ln w_j of 1/2 z_j^T K^-1 z_j (z_j = w_j y_j) is z_j^T K^-1 z_j.
+        const Eigen::VectorXd za = z.cwiseProduct(a).colwise().sum().transpose();
+        gradient->log_w += za - Eigen::VectorXd::Constant(d, m);
+      }
     }
   }
 
@@ -145,24 +167,15 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
         x_in.row(k) = x.row(in[k]);
         x_out.row(k) = x.row(out[k]);
       }
-      const Kernel kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
-      const Eigen::MatrixXd rbf = kernel.RbfPart(x_in);
-      Cholesky chol;
-      if (!chol.Compute(kernel.Matrix(x_in, rbf))) {
-        value.why = "dynamics kernel: " + chol.why();
+      Eigen::MatrixXd b, dx_in = Eigen::MatrixXd::Zero(pairs, 3);
+      Eigen::VectorXd dalpha = Eigen::VectorXd::Zero(4);
+      double term;
+      if (!GpTerm(Kernel(Kernel::Kind::kRbfLinear, p.log_alpha), x_in, x_out, lambda, "dynamics kernel", &term,
+                  &b, gradient ? &dx_in : nullptr, &dalpha, &value.jitter, &value.why)) {
         return value;
       }
-      value.jitter = std::max(value.jitter, chol.jitter());
-      const Eigen::MatrixXd b = chol.Solve(x_out);
-      dynamics += 1.5 * chol.LogDeterminant() + 0.5 * x_out.cwiseProduct(b).sum() +
-                  0.5 * pairs * 3 * kLog2Pi;
+      dynamics += term + 0.5 * pairs * 3 * kLog2Pi;
       if (gradient) {
-        Eigen::MatrixXd g = 1.5 * chol.Inverse();
-        g.noalias() -= 0.5 * b * b.transpose();
-        g *= lambda;
-        Eigen::MatrixXd dx_in = Eigen::MatrixXd::Zero(pairs, 3);
-        Eigen::VectorXd dalpha = Eigen::VectorXd::Zero(4);
-        kernel.AddGradient(x_in, g, rbf, &dx_in, &dalpha);
         gradient->log_alpha += dalpha;
         for (int k = 0; k < pairs; ++k) {
           dx.row(in[k]) += dx_in.row(k);
