@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Quick start, step 1: install missing packages, build, and run the main job on its default
 # input: prepare the default training gait dataset (one gait cycle per walking trial of
-# datasets_scripts/splits/train.txt) and print its summary.
+# datasets_scripts/splits/train.txt), learn the ML-JGPM torus prior from it with
+# topology-aware local learning (about 20 s on 2 cores) and plot its latent space.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 datasets_scripts/install_deps.sh
@@ -13,3 +14,5 @@ if [ -z "${JGPM_DATA:-}" ] && [ ! -d data/cmu/subjects ] && [ ! -d ../shared/dat
   datasets_scripts/fetch_cmu.sh
 fi
 ./build/tracker/cli/jgpm data cycles --split train --out build/train_cycles.json
+./build/tracker/cli/jgpm train --model mljgpm-torus --learning local --out build/mljgpm-torus.json
+./build/tracker/cli/jgpm plot latent build/mljgpm-torus.json --out build/mljgpm-torus.png
