@@ -174,6 +174,19 @@ TEST(JgpmCli, TrainEveryKindAndPlot) {
   EXPECT_GT(bytes.size(), 10000u);
 }
 
+// A time budget ends (local) learning early and the model is still written, saying so.
+TEST(JgpmCli, TrainStopsAtTheTimeBudgetAndWritesTheModel) {
+  test::TempDir dir;
+  const fs::path model = dir.path() / "m.json";
+  const Result r = Jgpm("train --model mljgpm-cyl --learning local --neighbourhood 60 --max-time 0.5 --data " +
+                        test::CmuRoot().string() + " --out " + model.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("local learning: stopped (time budget of 0.5 s used up)"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(ReadTextFile(model, "json"));
+  EXPECT_EQ(j["model"]["summary"]["termination"], "stopped");
+  EXPECT_LT(j["model"]["summary"]["wall_seconds"].get<double>(), 5.0);
+}
+
 TEST(JgpmCli, TrainAndPlotBadInput) {
   test::TempDir dir;
   Result r = Jgpm("train --model svm --out " + (dir.path() / "m.json").string());
@@ -181,6 +194,11 @@ TEST(JgpmCli, TrainAndPlotBadInput) {
   EXPECT_NE(r.err.find("--model svm: expected one of pca, gplvm"), std::string::npos) << r.err;
   r = Jgpm("train --learning sideways --out x.json");
   EXPECT_EQ(r.status, 2);
+  for (const char* option : {"--neighbourhood 2", "--max-time -1", "--threads -1"}) {
+    r = Jgpm(std::string("train ") + option + " --out x.json");
+    EXPECT_EQ(r.status, 2) << option;
+    EXPECT_NE(r.err.find(std::string(option).substr(0, std::string(option).find(' '))), std::string::npos) << r.err;
+  }
   const fs::path bad = dir.Write("bad.json", "{\"format\": \"jgpm-model\", \"version\": 99}");
   r = Jgpm("plot latent " + bad.string() + " --out " + (dir.path() / "p.png").string());
   EXPECT_EQ(r.status, 1);

@@ -30,6 +30,7 @@ struct TrainArguments {
   int threads = 0;
   int max_iterations = 5000;
   double max_time = 0;
+  int neighbourhood = 0;
   double sigma2 = 0.01;
 };
 
@@ -58,6 +59,10 @@ void RunTrain(const TrainArguments& a) {
   options.threads = a.threads;
   options.topology_sigma2 = a.sigma2;
   options.full.max_iterations = a.max_iterations;
+  if (a.neighbourhood > 0) {  // explicit: exactly this many, not capped at 10% of N
+    options.local.neighbourhood_size = a.neighbourhood;
+    options.local.max_neighbourhood_fraction = 1.0;
+  }
   options.progress = PrintProgress;
   options.budget.max_seconds = a.max_time;
   options.budget.interrupted = &interrupted;
@@ -111,6 +116,9 @@ void AddPriorCommands(CLI::App& app) {
   train->add_option("--max-iterations", a->max_iterations, "full learning: L-BFGS iteration cap")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
+  train->add_option("--neighbourhood", a->neighbourhood,
+                    "local learning: points per neighbourhood (default: 120, at most 10% of N)")
+      ->check(CLI::Range(4, 100000));
   train->add_option("--max-time", a->max_time,
                     "stop after this many seconds and write the model learned so far (0: no limit; "
                     "Ctrl-C does the same)")
