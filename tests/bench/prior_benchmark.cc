@@ -71,6 +71,20 @@ void BM_MeanPoseVarianceAndKinematics(benchmark::State& state) {
 }
 BENCHMARK(BM_MeanPoseVarianceAndKinematics)->Unit(benchmark::kMicrosecond);
 
+// The tracker's batch: predictive variances of 256 particles at once (one triangular
+// solve with 256 right-hand sides); time per point.
+void BM_VariancesBatchedPerPoint(benchmark::State& state) {
+  const GaitModel& model = Model();
+  const auto queries = Queries(model);
+  Eigen::MatrixXd xs(queries.size(), 3);
+  for (size_t i = 0; i < queries.size(); ++i) xs.row(i) = queries[i].transpose();
+  for (auto _ : state) benchmark::DoNotOptimize(model.Variances(xs).data());
+  state.SetItemsProcessed(state.iterations() * xs.rows());
+  state.counters["seconds_per_point"] = benchmark::Counter(
+      static_cast<double>(state.iterations() * xs.rows()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_VariancesBatchedPerPoint)->Unit(benchmark::kMillisecond);
+
 void BM_LogPriorWithGradient(benchmark::State& state) {
   const GaitModel& model = Model();
   const auto queries = Queries(model);
