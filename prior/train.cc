@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 
 #include "io/error.h"
 #include "prior/cholesky.h"
@@ -19,10 +19,11 @@ std::vector<Sequence> Sequences(const TrainingSet& set) {
   return sequences;
 }
 
-// Leading three right singular vectors of the normalised poses.
+// Leading three right singular vectors of the normalised poses: the eigenvectors of the
+// D x D matrix Y^T Y with the largest eigenvalues (ascending order from the solver).
 Eigen::MatrixXd PrincipalBasis(const Eigen::MatrixXd& y) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(y, Eigen::ComputeThinV);
-  Eigen::MatrixXd basis = svd.matrixV().leftCols(3);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(y.transpose() * y);
+  Eigen::MatrixXd basis = eigen.eigenvectors().rightCols(3).rowwise().reverse();
   // Sign convention: the largest entry of each component positive, so results repeat.
   for (int c = 0; c < 3; ++c) {
     Eigen::Index largest;
@@ -88,8 +89,14 @@ std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
   } else {
     data.params.x = scores / std::sqrt(scores.squaredNorm() / (3.0 * scores.rows()));
   }
-  data.params.log_beta = Eigen::Vector3d(0, 0, std::log(100.0));
-  if (spec.terms.dynamics) data.params.log_alpha = Eigen::Vector4d(0, 0, std::log(0.1), std::log(1e4));
+  // Comma initialisers, not Vector3d temporaries: GCC 12 with AVX-512 warns (falsely) that
+  // those read out of bounds.
+  data.params.log_beta.resize(3);
+  data.params.log_beta << 0, 0, std::log(100.0);
+  if (spec.terms.dynamics) {
+    data.params.log_alpha.resize(4);
+    data.params.log_alpha << 0, 0, std::log(0.1), std::log(1e4);
+  }
   if (spec.terms.channel_scales) data.params.log_w = Eigen::VectorXd::Zero(set.NumChannels());
 
   const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);
