@@ -7,6 +7,7 @@
 #include "io/error.h"
 
 extern "C" void openblas_set_num_threads(int num_threads);
+extern "C" int openblas_get_num_threads();
 
 namespace jgpm {
 
@@ -82,6 +83,8 @@ Eigen::MatrixXd Cholesky::Inverse() const {
 void SetLinearAlgebraThreads(int threads) {
   if (threads > 0) openblas_set_num_threads(threads);
 }
+
+int LinearAlgebraThreads() { return openblas_get_num_threads(); }
 
 namespace {
 // Callers check for NaN/inf before factorising; LAPACKE's own full-matrix scans would only

@@ -45,7 +45,23 @@ class Cholesky {
   std::string why_;
 };
 
-// Threads OpenBLAS may use (the `--threads` option); 0 leaves its default.
+// Threads OpenBLAS may use (the `--threads` option); 0 leaves its default. The setting
+// is process-wide.
 void SetLinearAlgebraThreads(int threads);
+int LinearAlgebraThreads();
+
+// Sets the OpenBLAS thread count while in scope and restores the previous one after.
+class LinearAlgebraThreadScope {
+ public:
+  explicit LinearAlgebraThreadScope(int threads) : previous_(LinearAlgebraThreads()) {
+    SetLinearAlgebraThreads(threads);
+  }
+  ~LinearAlgebraThreadScope() { SetLinearAlgebraThreads(previous_); }
+  LinearAlgebraThreadScope(const LinearAlgebraThreadScope&) = delete;
+  LinearAlgebraThreadScope& operator=(const LinearAlgebraThreadScope&) = delete;
+
+ private:
+  int previous_;
+};
 
 }  // namespace jgpm
