@@ -109,7 +109,7 @@ TEST(LocalTrainer, ImprovesDeterministicallyAndReports) {
 }
 
 // Halving the steps when a check finds no improvement lets local learning settle below
-// the noise floor of a constant step (here -739 against -608). Results do not depend on
+// the noise floor of a constant step (here -789 against -608). Results do not depend on
 // the BLAS thread count, and the caller's thread setting is restored.
 TEST(LocalTrainer, StepDecaySettlesLower) {
   Problem p = MakeProblem(ModelKind::kMljgpmTorus);
