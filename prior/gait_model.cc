@@ -38,9 +38,20 @@ class PcaGaitModel : public GaitModel {
     if (variance) *variance = residual_variance_;
   }
 
-  double LogPrior(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const override {
+  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, const Eigen::MatrixXd* pose_gradient,
+                            Eigen::MatrixXd* latent_gradient) const override {
+    const TrainingSet& s = data_.set;
+    if (pose_gradient) *latent_gradient = (pose_gradient->array().rowwise() * s.scale.array()).matrix() * data_.pca_basis;
+    return ((xs * data_.pca_basis.transpose()).array().rowwise() * s.scale.array()).rowwise() + s.mean.array();
+  }
+
+  double LogDensity(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const override {
     if (gradient) *gradient = -x.cwiseQuotient(score_variance_);
     return -0.5 * x.cwiseAbs2().cwiseQuotient(score_variance_).sum();
+  }
+
+  double LogPrior(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const override {
+    return LogDensity(x, gradient);
   }
 
  private:
@@ -99,7 +110,7 @@ class GpGaitModel : public GaitModel {
     const double floor = kernel_.noise_variance();
     const double variance = std::max(floor, kernel_.Self(x) - half.squaredNorm());
     const double d = NumChannels();
-    double value = KernelDensity(x, gradient) - 0.5 * d * std::log(variance);
+    double value = LogDensity(x, gradient) - 0.5 * d * std::log(variance);
     if (gradient && variance > floor) {
       // dk_i/dx = -b2 (x - x_i) k_i, so d variance/dx = 2 b2 sum_i (K^-1 k)_i k_i (x - x_i).
       const Eigen::VectorXd weights = chol_.HalfSolveTransposed(half).cwiseProduct(k);
@@ -112,26 +123,53 @@ class GpGaitModel : public GaitModel {
 
   Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const override {
     // All points at once: v_j = k** - |L^-1 k_j|^2.
-    const Eigen::MatrixXd& train = data_.params.x;
-    Eigen::MatrixXd d2 = -2.0 * xs * train.transpose();
-    d2.colwise() += xs.rowwise().squaredNorm();
-    d2.rowwise() += train.rowwise().squaredNorm().transpose();
-    const Eigen::MatrixXd k =
-        kernel_.signal_variance() * (-0.5 * kernel_.inverse_width() * d2.array().max(0.0)).exp().matrix();
+    const Eigen::MatrixXd k = CrossMatrix(xs);
     const Eigen::VectorXd quadratic = chol_.HalfSolve(k.transpose()).colwise().squaredNorm().transpose();
     return (Eigen::VectorXd::Constant(xs.rows(), kernel_.signal_variance()) - quadratic).cwiseMax(0.0);
   }
 
+  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, const Eigen::MatrixXd* pose_gradient,
+                            Eigen::MatrixXd* latent_gradient) const override {
+    const Eigen::MatrixXd k = CrossMatrix(xs);  // T x N
+    const TrainingSet& s = data_.set;
+    if (pose_gradient) {
+      // dE/dk_ti = sum_c dE/dpose_tc scale_c a_ic, and dk_ti/dx_t = -b2 (x_t - x_i) k_ti, so
+      // dE/dx_t = -b2 (x_t sum_i h_ti - sum_i h_ti x_i) with h = (dE/dk) o k.
+      const Eigen::MatrixXd h =
+          ((pose_gradient->array().rowwise() * s.scale.array()).matrix() * a_.transpose()).cwiseProduct(k);
+      *latent_gradient = -kernel_.inverse_width() *
+                         (h.rowwise().sum().asDiagonal() * xs - h * data_.params.x);
+    }
+    return ((k * a_).array().rowwise() * s.scale.array()).rowwise() + s.mean.array();
+  }
+
   bool HasDynamics() const override { return dynamics_ != nullptr; }
 
-  Eigen::Vector3d NextLatent(const Eigen::Vector3d& x, double* variance) const override {
-    if (!dynamics_) return GaitModel::NextLatent(x, variance);
+  Eigen::Vector3d NextLatent(const Eigen::Vector3d& x, double* variance, Eigen::Matrix3d* jacobian) const override {
+    if (!dynamics_) return GaitModel::NextLatent(x, variance, jacobian);
     const Eigen::VectorXd k = dynamics_->Cross(x_in_, x);
     if (variance) *variance = std::max(0.0, dynamics_->Self(x) - dynamics_chol_.HalfSolve(k).squaredNorm());
+    if (jacobian) {
+      // k_i = a1 exp(-a2/2 |x - x_i|^2) + a3 x_i.x: dk_i/dx = a2 (x_i - x) rbf_i + a3 x_i.
+      const Eigen::VectorXd rbf = k - dynamics_->linear_variance() * x_in_ * x;
+      const Eigen::MatrixXd dk = dynamics_->inverse_width() *
+                                     (rbf.asDiagonal() * (x_in_.rowwise() - x.transpose())) +
+                                 dynamics_->linear_variance() * x_in_;  // N x 3
+      *jacobian = b_.transpose() * dk;
+    }
     return b_.transpose() * k;
   }
 
  private:
+  // k(x*, x_i) for every row x* of xs and training point x_i: T x N.
+  Eigen::MatrixXd CrossMatrix(const Eigen::MatrixXd& xs) const {
+    const Eigen::MatrixXd& train = data_.params.x;
+    Eigen::MatrixXd d2 = -2.0 * xs * train.transpose();
+    d2.colwise() += xs.rowwise().squaredNorm();
+    d2.rowwise() += train.rowwise().squaredNorm().transpose();
+    return kernel_.signal_variance() * (-0.5 * kernel_.inverse_width() * d2.array().max(0.0)).exp().matrix();
+  }
+
   Kernel kernel_;
   Cholesky chol_;
   Eigen::MatrixXd a_;
@@ -198,8 +236,9 @@ Eigen::VectorXd GaitModel::Variances(const Eigen::MatrixXd& xs) const {
   return variances;
 }
 
-Eigen::Vector3d GaitModel::NextLatent(const Eigen::Vector3d& x, double* variance) const {
+Eigen::Vector3d GaitModel::NextLatent(const Eigen::Vector3d& x, double* variance, Eigen::Matrix3d* jacobian) const {
   if (variance) *variance = 0;
+  if (jacobian) jacobian->setIdentity();
   return x;
 }
 
@@ -207,7 +246,7 @@ Eigen::VectorXd GaitModel::Denormalise(const Eigen::VectorXd& y) const {
   return data_.set.mean.transpose() + data_.set.scale.transpose().cwiseProduct(y);
 }
 
-double GaitModel::KernelDensity(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const {
+double GaitModel::LogDensity(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const {
   const Eigen::MatrixXd& xs = data_.params.x;
   const double h2 = density_width_ * density_width_;
   const Eigen::VectorXd d2 = (xs.rowwise() - x.transpose()).rowwise().squaredNorm();

@@ -68,13 +68,24 @@ class GaitModel {
                        double* variance) const = 0;
   // Predictive variances at many latent points (rows of xs), as Predict gives them.
   virtual Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const;
-  // ln p(x|M) up to a constant: a kernel density over the training latent points (width:
-  // median nearest-neighbour distance) plus, for GP models, -D/2 ln variance(x).
-  // `gradient` may be null.
+  // Mean poses (degrees, T x D) at many latent points (rows of xs, T x 3), as Predict gives
+  // them. With `pose_gradient` (dE/dpose, T x D, for a function E of the poses) also sets
+  // `latent_gradient` to dE/dxs (T x 3): the vector-Jacobian product sequence inference
+  // needs, for one more T x N x D product instead of T Jacobians.
+  virtual Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, const Eigen::MatrixXd* pose_gradient = nullptr,
+                                    Eigen::MatrixXd* latent_gradient = nullptr) const = 0;
+  // ln of the latent density up to a constant, O(N): a kernel density over the training
+  // latent points (width: median nearest-neighbour distance); PCA: the Gaussian of its
+  // scores. `gradient` may be null.
+  virtual double LogDensity(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const;
+  // ln p(x|M) up to a constant: LogDensity plus, for GP models, -D/2 ln variance(x), which
+  // costs O(N^2). `gradient` may be null.
   virtual double LogPrior(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const = 0;
-  // GPDM family: the mean next latent point along the dynamics, and its variance.
+  // GPDM family: the mean next latent point along the dynamics, its variance (O(N^2)) and
+  // its Jacobian d next / d x (O(N)); either may be null. Others: x itself.
   virtual bool HasDynamics() const { return false; }
-  virtual Eigen::Vector3d NextLatent(const Eigen::Vector3d& x, double* variance) const;
+  virtual Eigen::Vector3d NextLatent(const Eigen::Vector3d& x, double* variance,
+                                     Eigen::Matrix3d* jacobian = nullptr) const;
 
   // JGPM family.
   bool HasManifold() const { return !data_.gait_order.empty(); }
@@ -92,7 +103,6 @@ class GaitModel {
 
  protected:
   GaitModel(GaitModelData data, const std::string& source);
-  double KernelDensity(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const;
   Eigen::VectorXd Denormalise(const Eigen::VectorXd& y) const;
 
   GaitModelData data_;

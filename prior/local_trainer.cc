@@ -58,7 +58,6 @@ std::vector<std::vector<int>> LocalNeighbourhoods(const TrainingSet& set,
     layer_coordinates[l] = prior_coordinates.middleRows(set.Row(l, 0, 0), per_layer_points);
     adaptors.push_back(std::make_unique<RowsAdaptor>(RowsAdaptor{layer_coordinates[l]}));
     trees.push_back(std::make_unique<KdTree>(3, *adaptors.back(), nanoflann::KDTreeSingleIndexAdaptorParams(10)));
-    trees.back()->buildIndex();
   }
   std::vector<std::vector<int>> neighbourhoods(set.NumPoints());
   std::vector<int> indices(per_layer);

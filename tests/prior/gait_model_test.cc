@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include "io/asf.h"
-#include "io/text_reader.h"
 #include "prior/model_file.h"
 #include "prior/train.h"
 #include "prior_test_support.h"
@@ -12,32 +10,8 @@
 namespace jgpm {
 namespace {
 
-// The synthetic datasets use made-up channels, so models need a matching skeleton: the
-// 43 gait channels of a real CMU skeleton, filled with synthetic walks.
-GaitDataset SyntheticWalks(int gaits, int poses) {
-  const Skeleton skeleton = [] {
-    const std::string text = ReadTextFile(test::CmuRoot() / "subjects/35/35.asf", "asf");
-    return ParseAsf(text, "35.asf");
-  }();
-  const GaitPoseLayout layout(skeleton, "35.asf");
-  GaitDataset dataset = test::SyntheticGaitDataset(gaits, poses, layout.NumChannels());
-  dataset.channel_names = layout.channel_names();
-  dataset.channel_joints = layout.channel_joints();
-  return dataset;
-}
-
-ReferenceSkeleton Skeleton35() {
-  return {"35_01", ReadTextFile(test::CmuRoot() / "subjects/35/35.asf", "asf")};
-}
-
 std::unique_ptr<GaitModel> Train(ModelKind kind, Learning learning = Learning::kFull) {
-  TrainingOptions options;
-  options.kind = kind;
-  options.learning = learning;
-  options.full.max_iterations = 300;
-  options.local.max_steps = 3000;
-  options.local.max_neighbourhood_fraction = 0.5;
-  return TrainGaitModel(SyntheticWalks(5, 10), Skeleton35(), options);
+  return test::TrainOnSyntheticWalks(kind, learning);
 }
 
 TEST(GaitModel, GpMeanReproducesTrainingPoses) {
@@ -92,6 +66,47 @@ TEST(GaitModel, BatchedVariancesMatchPredict) {
     double variance;
     model->Predict(xs.row(i).transpose(), &pose, &variance);
     EXPECT_NEAR(batched[i], variance, 1e-9);
+  }
+}
+
+// MeanPoses row by row equals Predict, and its vector-Jacobian product equals central
+// finite differences of E = sum(G o poses) for a random G, for both variants.
+TEST(GaitModel, BatchedMeanPosesAndTheirGradient) {
+  for (ModelKind kind : {ModelKind::kPca, ModelKind::kGpdm}) {
+    const auto model = Train(kind);
+    Eigen::MatrixXd xs = model->latent().topRows(6) + 0.1 * Eigen::MatrixXd::Random(6, 3);
+    const Eigen::MatrixXd g = Eigen::MatrixXd::Random(6, model->NumChannels());
+    Eigen::MatrixXd analytic;
+    const Eigen::MatrixXd poses = model->MeanPoses(xs, &g, &analytic);
+    for (int t = 0; t < xs.rows(); ++t) {
+      Eigen::VectorXd pose;
+      model->Predict(xs.row(t).transpose(), &pose, nullptr);
+      EXPECT_LT((poses.row(t).transpose() - pose).cwiseAbs().maxCoeff(), 1e-9) << ModelKindName(kind);
+      for (int d = 0; d < 3; ++d) {
+        Eigen::MatrixXd plus = xs, minus = xs;
+        plus(t, d) += 1e-6;
+        minus(t, d) -= 1e-6;
+        const double fd = (model->MeanPoses(plus).cwiseProduct(g).sum() -
+                           model->MeanPoses(minus).cwiseProduct(g).sum()) / 2e-6;
+        EXPECT_NEAR(analytic(t, d), fd, 1e-5 * std::max(1.0, std::abs(fd))) << ModelKindName(kind);
+      }
+    }
+  }
+}
+
+TEST(GaitModel, DynamicsJacobianMatchesFiniteDifferences) {
+  const auto model = Train(ModelKind::kGpdm);
+  for (int i = 2; i < model->NumPoints(); i += 13) {
+    const Eigen::Vector3d x = model->latent().row(i).transpose() + Eigen::Vector3d(0.03, 0.02, -0.04);
+    Eigen::Matrix3d jacobian;
+    model->NextLatent(x, nullptr, &jacobian);
+    for (int d = 0; d < 3; ++d) {
+      Eigen::Vector3d plus = x, minus = x;
+      plus[d] += 1e-6;
+      minus[d] -= 1e-6;
+      const Eigen::Vector3d fd = (model->NextLatent(plus, nullptr) - model->NextLatent(minus, nullptr)) / 2e-6;
+      EXPECT_LT((jacobian.col(d) - fd).norm(), 1e-5 * std::max(1.0, fd.norm())) << i;
+    }
   }
 }
 

@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "io/asf.h"
-#include "io/text_reader.h"
 #include "prior/train.h"
 #include "prior_test_support.h"
 #include "test_support.h"
@@ -15,15 +13,10 @@ namespace {
 using test::ExpectInputError;
 
 std::unique_ptr<GaitModel> SmallModel(ModelKind kind) {
-  const std::string asf = ReadTextFile(test::CmuRoot() / "subjects/35/35.asf", "asf");
-  const GaitPoseLayout layout(ParseAsf(asf, "35.asf"), "35.asf");
-  GaitDataset dataset = test::SyntheticGaitDataset(4, 8, layout.NumChannels());
-  dataset.channel_names = layout.channel_names();
-  dataset.channel_joints = layout.channel_joints();
   TrainingOptions options;
   options.kind = kind;
   options.full.max_iterations = 50;
-  return TrainGaitModel(dataset, {"35_01", asf}, options);
+  return TrainGaitModel(test::SyntheticWalks(4, 8), test::Skeleton35(), options);
 }
 
 // Every model kind: write, read, and the predictions are bit-identical.
@@ -46,7 +39,10 @@ TEST(ModelFile, LoadsBackToIdenticalPredictions) {
       EXPECT_EQ(a, b);
       EXPECT_EQ(va, vb);
       EXPECT_EQ(model->LogPrior(x, nullptr), back->LogPrior(x, nullptr));
+      EXPECT_EQ(model->NextLatent(x, nullptr), back->NextLatent(x, nullptr));
     }
+    const Eigen::MatrixXd xs = model->latent().topRows(5);
+    EXPECT_EQ(model->MeanPoses(xs), back->MeanPoses(xs));
   }
 }
 

@@ -5,7 +5,11 @@
 #include <cmath>
 #include <string>
 
+#include "io/asf.h"
 #include "io/gait_dataset.h"
+#include "io/text_reader.h"
+#include "prior/train.h"
+#include "test_support.h"
 
 namespace jgpm::test {
 
@@ -32,6 +36,32 @@ inline GaitDataset SyntheticGaitDataset(int gaits, int poses, int channels) {
     dataset.trials.push_back(trial);
   }
   return dataset;
+}
+
+// The synthetic datasets use made-up channels, so models need a matching skeleton: the
+// 43 gait channels of a real CMU skeleton (subject 35's), filled with synthetic walks.
+inline ReferenceSkeleton Skeleton35() {
+  return {"35_01", ReadTextFile(CmuRoot() / "subjects/35/35.asf", "asf")};
+}
+
+inline GaitDataset SyntheticWalks(int gaits, int poses) {
+  const ReferenceSkeleton reference = Skeleton35();
+  const GaitPoseLayout layout(ParseAsf(reference.asf, "35.asf"), "35.asf");
+  GaitDataset dataset = SyntheticGaitDataset(gaits, poses, layout.NumChannels());
+  dataset.channel_names = layout.channel_names();
+  dataset.channel_joints = layout.channel_joints();
+  return dataset;
+}
+
+// A small model of `kind` on 5 synthetic walks of 10 poses.
+inline std::unique_ptr<GaitModel> TrainOnSyntheticWalks(ModelKind kind, Learning learning = Learning::kFull) {
+  TrainingOptions options;
+  options.kind = kind;
+  options.learning = learning;
+  options.full.max_iterations = 300;
+  options.local.max_steps = 3000;
+  options.local.max_neighbourhood_fraction = 0.5;
+  return TrainGaitModel(SyntheticWalks(5, 10), Skeleton35(), options);
 }
 
 }  // namespace jgpm::test
