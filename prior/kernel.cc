@@ -1,6 +1,7 @@
 #include "prior/kernel.h"
 
 #include "io/error.h"
+#include "prior/rbf_row.h"
 
 namespace jgpm {
 
@@ -10,11 +11,14 @@ Kernel::Kernel(Kind kind, const Eigen::VectorXd& log_params)
 }
 
 Eigen::MatrixXd Kernel::RbfPart(const Eigen::MatrixXd& x) const {
-  const Eigen::VectorXd norms = x.rowwise().squaredNorm();
-  Eigen::MatrixXd d2 = -2.0 * x * x.transpose();
-  d2.colwise() += norms;
-  d2.rowwise() += norms.transpose();
-  return signal_variance() * (-0.5 * inverse_width() * d2.array().max(0.0)).exp().matrix();
+  JGPM_CHECK(x.cols() == 3);
+  const int n = static_cast<int>(x.rows());
+  Eigen::MatrixXd k(n, n);
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector3d q = x.row(j).transpose();
+    RbfRow(x.data(), n, q.data(), signal_variance(), inverse_width(), k.col(j).data());
+  }
+  return k;
 }
 
 Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const {
@@ -25,8 +29,9 @@ Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& 
 }
 
 Eigen::VectorXd Kernel::Cross(const Eigen::MatrixXd& x, const Eigen::Vector3d& x_star) const {
-  const Eigen::VectorXd d2 = (x.rowwise() - x_star.transpose()).rowwise().squaredNorm();
-  Eigen::VectorXd k = signal_variance() * (-0.5 * inverse_width() * d2.array()).exp().matrix();
+  JGPM_CHECK(x.cols() == 3);
+  Eigen::VectorXd k(x.rows());
+  RbfRow(x.data(), static_cast<int>(x.rows()), x_star.data(), signal_variance(), inverse_width(), k.data());
   if (kind_ == Kind::kRbfLinear) k.noalias() += linear_variance() * x * x_star;
   return k;
 }
