@@ -10,6 +10,7 @@
 #include "io/error.h"
 #include "prior/cholesky.h"
 #include "prior/kernel.h"
+#include "prior/rbf_row.h"
 
 namespace jgpm {
 namespace {
@@ -38,10 +39,13 @@ class PcaGaitModel : public GaitModel {
     if (variance) *variance = residual_variance_;
   }
 
-  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, const Eigen::MatrixXd* pose_gradient,
-                            Eigen::MatrixXd* latent_gradient) const override {
+  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, std::array<Eigen::MatrixXd, 3>* jacobians) const override {
     const TrainingSet& s = data_.set;
-    if (pose_gradient) *latent_gradient = (pose_gradient->array().rowwise() * s.scale.array()).matrix() * data_.pca_basis;
+    if (jacobians) {
+      for (int d = 0; d < 3; ++d) {
+        (*jacobians)[d] = (data_.pca_basis.col(d).transpose().cwiseProduct(s.scale)).replicate(xs.rows(), 1);
+      }
+    }
     return ((xs * data_.pca_basis.transpose()).array().rowwise() * s.scale.array()).rowwise() + s.mean.array();
   }
 
@@ -128,17 +132,17 @@ class GpGaitModel : public GaitModel {
     return (Eigen::VectorXd::Constant(xs.rows(), kernel_.signal_variance()) - quadratic).cwiseMax(0.0);
   }
 
-  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, const Eigen::MatrixXd* pose_gradient,
-                            Eigen::MatrixXd* latent_gradient) const override {
+  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, std::array<Eigen::MatrixXd, 3>* jacobians) const override {
     const Eigen::MatrixXd k = CrossMatrix(xs);  // T x N
     const TrainingSet& s = data_.set;
-    if (pose_gradient) {
-      // dE/dk_ti = sum_c dE/dpose_tc scale_c a_ic, and dk_ti/dx_t = -b2 (x_t - x_i) k_ti, so
-      // dE/dx_t = -b2 (x_t sum_i h_ti - sum_i h_ti x_i) with h = (dE/dk) o k.
-      const Eigen::MatrixXd h =
-          ((pose_gradient->array().rowwise() * s.scale.array()).matrix() * a_.transpose()).cwiseProduct(k);
-      *latent_gradient = -kernel_.inverse_width() *
-                         (h.rowwise().sum().asDiagonal() * xs - h * data_.params.x);
+    if (jacobians) {
+      // dk_ti/dx_td = b2 (x_id - x_td) k_ti, so d pose_t / d x_td = scale o (b2 (k o (x_d - x_td)) A).
+      const Eigen::MatrixXd& train = data_.params.x;
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::MatrixXd kd =
+            (k.array().rowwise() * train.col(d).transpose().array()).matrix() - xs.col(d).asDiagonal() * k;
+        (*jacobians)[d] = ((kernel_.inverse_width() * kd * a_).array().rowwise() * s.scale.array()).matrix();
+      }
     }
     return ((k * a_).array().rowwise() * s.scale.array()).rowwise() + s.mean.array();
   }
@@ -164,10 +168,13 @@ class GpGaitModel : public GaitModel {
   // k(x*, x_i) for every row x* of xs and training point x_i: T x N.
   Eigen::MatrixXd CrossMatrix(const Eigen::MatrixXd& xs) const {
     const Eigen::MatrixXd& train = data_.params.x;
-    Eigen::MatrixXd d2 = -2.0 * xs * train.transpose();
-    d2.colwise() += xs.rowwise().squaredNorm();
-    d2.rowwise() += train.rowwise().squaredNorm().transpose();
-    return kernel_.signal_variance() * (-0.5 * kernel_.inverse_width() * d2.array().max(0.0)).exp().matrix();
+    Eigen::MatrixXd k_transposed(train.rows(), xs.rows());
+    for (int t = 0; t < xs.rows(); ++t) {
+      const Eigen::Vector3d q = xs.row(t).transpose();
+      RbfRow(train.data(), static_cast<int>(train.rows()), q.data(), kernel_.signal_variance(),
+             kernel_.inverse_width(), k_transposed.col(t).data());
+    }
+    return k_transposed.transpose();
   }
 
   Kernel kernel_;

@@ -7,6 +7,7 @@
 // predictions need. Two variants: the PCA baseline (linear) and the GP models.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,11 +70,10 @@ class GaitModel {
   // Predictive variances at many latent points (rows of xs), as Predict gives them.
   virtual Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const;
   // Mean poses (degrees, T x D) at many latent points (rows of xs, T x 3), as Predict gives
-  // them. With `pose_gradient` (dE/dpose, T x D, for a function E of the poses) also sets
-  // `latent_gradient` to dE/dxs (T x 3): the vector-Jacobian product sequence inference
-  // needs, for one more T x N x D product instead of T Jacobians.
-  virtual Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, const Eigen::MatrixXd* pose_gradient = nullptr,
-                                    Eigen::MatrixXd* latent_gradient = nullptr) const = 0;
+  // them, in one batch. With `jacobians`, also d pose / d x_d for each latent dimension d
+  // (each T x D: row t holds the derivatives of pose t).
+  virtual Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs,
+                                    std::array<Eigen::MatrixXd, 3>* jacobians = nullptr) const = 0;
   // ln of the latent density up to a constant, O(N): a kernel density over the training
   // latent points (width: median nearest-neighbour distance); PCA: the Gaussian of its
   // scores. `gradient` may be null.

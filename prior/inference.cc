@@ -2,15 +2,16 @@
 
 #include <cmath>
 
-#include <ceres/first_order_function.h>
-#include <ceres/gradient_problem.h>
-#include <ceres/gradient_problem_solver.h>
+#include <ceres/ceres.h>
+#include <ceres/evaluation_callback.h>
 #include <nanoflann.hpp>
 
 #include "io/error.h"
 
 namespace jgpm {
 namespace {
+
+using PackedLatent = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 // Mean distance between the latent points of consecutive training poses of a cycle.
 double MeanLatentStep(const GaitModel& model) {
@@ -26,36 +27,234 @@ double MeanLatentStep(const GaitModel& model) {
   return count ? std::max(sum / count, 1e-9) : 1.0;
 }
 
-using PackedLatent = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
-
-// Ceres view of the energy over the packed latent points (x_1, ..., x_T, row by row).
-class CeresEnergy : public ceres::FirstOrderFunction {
+// The mean poses (and Jacobians) of all frames, computed in one batch before each
+// evaluation from the latent points in `x`, which Ceres keeps at the evaluation point.
+class BatchedMeans : public ceres::EvaluationCallback {
  public:
-  CeresEnergy(const SequenceEnergy& energy, int t) : energy_(energy), t_(t) {}
-  bool Evaluate(const double* parameters, double* cost, double* gradient) const override {
-    const Eigen::MatrixXd x = Eigen::Map<const PackedLatent>(parameters, t_, 3);
-    Eigen::MatrixXd g;
-    *cost = energy_.Evaluate(x, gradient ? &g : nullptr);
-    if (!std::isfinite(*cost) || (gradient && !g.allFinite())) return false;
-    if (gradient) Eigen::Map<PackedLatent>(gradient, t_, 3) = g;
-    return true;
+  BatchedMeans(const GaitModel& model, const std::vector<double>& x) : model_(model), x_(x) {}
+  void PrepareForEvaluation(bool jacobians, bool new_point) override {
+    if (!new_point && (!jacobians || have_jacobians_)) return;
+    const Eigen::MatrixXd xs = Eigen::Map<const PackedLatent>(x_.data(), static_cast<int>(x_.size()) / 3, 3);
+    poses = model_.MeanPoses(xs, jacobians ? &this->jacobians : nullptr);
+    have_jacobians_ = jacobians;
   }
-  int NumParameters() const override { return 3 * t_; }
+  Eigen::MatrixXd poses;                     // T x D
+  std::array<Eigen::MatrixXd, 3> jacobians;  // d pose / d x_d, T x D each
 
  private:
-  const SequenceEnergy& energy_;
-  const int t_;
+  const GaitModel& model_;
+  const std::vector<double>& x_;
+  bool have_jacobians_ = false;
 };
 
-// Latent point of the training pose nearest to each observed pose, on the observed channels
-// in training standard deviations.
-Eigen::MatrixXd NearestTrainingLatents(const GaitModel& model, const Eigen::MatrixXd& u,
-                                       const std::vector<bool>& observed) {
-  const TrainingSet& set = model.data().set;
-  std::vector<int> columns;
-  for (int k = 0; k < model.NumChannels(); ++k) {
-    if (observed.empty() || observed[k]) columns.push_back(k);
+// (f_k(x_t) - u_tk) / s_k for the observed channels k of frame t.
+class FrameResidual : public ceres::CostFunction {
+ public:
+  FrameResidual(const BatchedMeans& means, int t, Eigen::VectorXd observed, std::vector<int> channels,
+                Eigen::VectorXd inverse_noise)
+      : means_(means), t_(t), u_(std::move(observed)), channels_(std::move(channels)),
+        inverse_noise_(std::move(inverse_noise)) {
+    set_num_residuals(static_cast<int>(channels_.size()));
+    mutable_parameter_block_sizes()->push_back(3);
   }
+  bool Evaluate(double const* const*, double* residuals, double** jacobians) const override {
+    for (size_t i = 0; i < channels_.size(); ++i) {
+      const int k = channels_[i];
+      residuals[i] = inverse_noise_[i] * (means_.poses(t_, k) - u_[i]);
+      if (jacobians && jacobians[0]) {
+        for (int d = 0; d < 3; ++d) jacobians[0][3 * i + d] = inverse_noise_[i] * means_.jacobians[d](t_, k);
+      }
+    }
+    return true;
+  }
+
+ private:
+  const BatchedMeans& means_;
+  const int t_;
+  const Eigen::VectorXd u_;  // the observed channels of frame t
+  const std::vector<int> channels_;
+  const Eigen::VectorXd inverse_noise_;
+};
+
+// (x_t - g(x_{t-1})) / d, on the blocks x_{t-1} and x_t.
+class DynamicsResidual : public ceres::SizedCostFunction<3, 3, 3> {
+ public:
+  DynamicsResidual(const GaitModel& model, double inverse_tolerance)
+      : model_(model), inverse_tolerance_(inverse_tolerance) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Map<const Eigen::Vector3d> previous(parameters[0]), current(parameters[1]);
+    Eigen::Matrix3d step_jacobian;
+    const bool want = jacobians && jacobians[0];
+    Eigen::Map<Eigen::Vector3d> r(residuals);
+    r = inverse_tolerance_ * (current - model_.NextLatent(previous, nullptr, want ? &step_jacobian : nullptr));
+    using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+    if (want) {
+      Eigen::Map<RowMajor3> j(jacobians[0]);
+      j = -inverse_tolerance_ * step_jacobian;
+    }
+    if (jacobians && jacobians[1]) {
+      Eigen::Map<RowMajor3> j(jacobians[1]);
+      j = inverse_tolerance_ * RowMajor3::Identity();
+    }
+    return true;
+  }
+
+ private:
+  const GaitModel& model_;
+  const double inverse_tolerance_;
+};
+
+// (x_t - mean) / std per dimension.
+class GaussianResidual : public ceres::SizedCostFunction<3, 3> {
+ public:
+  GaussianResidual(Eigen::Vector3d mean, Eigen::Vector3d inverse_std) : mean_(mean), inverse_std_(inverse_std) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Map<const Eigen::Vector3d> x(parameters[0]);
+    Eigen::Map<Eigen::Vector3d> r(residuals);
+    r = (x - mean_).cwiseProduct(inverse_std_);
+    if (jacobians && jacobians[0]) {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> j(jacobians[0]);
+      j = inverse_std_.asDiagonal();
+    }
+    return true;
+  }
+
+ private:
+  const Eigen::Vector3d mean_, inverse_std_;
+};
+
+// Checks the observations against the model; returns the observed channels.
+std::vector<int> ObservedChannels(const GaitModel& model, const PoseObservations& o) {
+  const int d = model.NumChannels();
+  const Eigen::MatrixXd& u = o.poses_deg;
+  if (u.rows() < 1 || u.cols() != d) {
+    ThrowInputError("observed poses", "expected T x " + std::to_string(d) + " channels, got " +
+                                          std::to_string(u.rows()) + " x " + std::to_string(u.cols()));
+  }
+  if (!o.observed.empty() && static_cast<int>(o.observed.size()) != d) {
+    ThrowInputError("observed channels", "expected " + std::to_string(d) + " flags");
+  }
+  if (o.noise_std_deg.size() && (o.noise_std_deg.size() != d || !(o.noise_std_deg.array() >= 0).all())) {
+    ThrowInputError("observation noise", "expected " + std::to_string(d) + " standard deviations >= 0");
+  }
+  std::vector<int> channels;
+  for (int k = 0; k < d; ++k) {
+    if (!o.observed.empty() && !o.observed[k]) continue;
+    channels.push_back(k);
+    for (int t = 0; t < u.rows(); ++t) {
+      if (!std::isfinite(u(t, k))) {
+        ThrowInputError("observed poses", "pose " + std::to_string(t) + ", channel " +
+                                              model.data().set.channel_names[k] + " is not finite");
+      }
+    }
+  }
+  if (channels.empty()) ThrowInputError("observed channels", "at least one channel must be observed");
+  return channels;
+}
+
+}  // namespace
+
+bool InferenceOptions::Check(std::string* why) const {
+  if (!(observation_noise_deg > 0)) *why = "observation_noise_deg must be > 0";
+  else if (!(dynamics_tolerance > 0)) *why = "dynamics_tolerance must be > 0";
+  else if (max_iterations < 0) *why = "max_iterations must be >= 0";
+  else return true;
+  return false;
+}
+
+struct SequenceProblem::Impl {
+  Impl(const GaitModel& model, int frames, int max_iterations)
+      : model(model), t(frames), x(3 * frames, 0.0), means(model, x), problem([this] {
+          ceres::Problem::Options options;
+          options.evaluation_callback = &means;
+          return options;
+        }()),
+        max_iterations(max_iterations) {}
+  const GaitModel& model;
+  const int t;
+  std::vector<double> x;  // the parameter blocks: x_t at x.data() + 3 t
+  BatchedMeans means;     // before `problem`, which points to it
+  ceres::Problem problem;
+  const int max_iterations;
+
+  void Set(const Eigen::MatrixXd& latent) {
+    JGPM_CHECK(latent.rows() == t && latent.cols() == 3);
+    Eigen::Map<PackedLatent>(x.data(), t, 3) = latent;
+  }
+};
+
+SequenceProblem::SequenceProblem(const GaitModel& model, const PoseObservations& o, const InferenceOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("inference options", why);
+  const std::vector<int> channels = ObservedChannels(model, o);
+  const int t = static_cast<int>(o.poses_deg.rows());
+  impl_ = std::make_unique<Impl>(model, t, options.max_iterations);
+  Eigen::VectorXd inverse_noise(channels.size());
+  for (size_t i = 0; i < channels.size(); ++i) {
+    const double noise = o.noise_std_deg.size() ? o.noise_std_deg[channels[i]] : 0.0;
+    inverse_noise[i] = 1.0 / std::hypot(options.observation_noise_deg, noise);
+  }
+  for (int f = 0; f < t; ++f) {
+    Eigen::VectorXd observed(channels.size());
+    for (size_t i = 0; i < channels.size(); ++i) observed[i] = o.poses_deg(f, channels[i]);
+    impl_->problem.AddResidualBlock(new FrameResidual(impl_->means, f, observed, channels, inverse_noise), nullptr,
+                                    impl_->x.data() + 3 * f);
+  }
+  if (model.HasDynamics()) {
+    const double inverse_tolerance = 1.0 / (options.dynamics_tolerance * MeanLatentStep(model));
+    for (int f = 1; f < t; ++f) {
+      impl_->problem.AddResidualBlock(new DynamicsResidual(model, inverse_tolerance), nullptr,
+                                      impl_->x.data() + 3 * (f - 1), impl_->x.data() + 3 * f);
+    }
+  } else {
+    const Eigen::MatrixXd& latent = model.latent();
+    const Eigen::Vector3d mean = latent.colwise().mean();
+    const Eigen::Vector3d std =
+        ((latent.rowwise() - mean.transpose()).colwise().squaredNorm() / latent.rows()).cwiseSqrt().transpose();
+    for (int f = 0; f < t; ++f) {
+      impl_->problem.AddResidualBlock(new GaussianResidual(mean, std.cwiseMax(1e-9).cwiseInverse()), nullptr,
+                                      impl_->x.data() + 3 * f);
+    }
+  }
+}
+
+SequenceProblem::~SequenceProblem() = default;
+
+int SequenceProblem::NumFrames() const { return impl_->t; }
+
+double SequenceProblem::Evaluate(const Eigen::MatrixXd& latent, Eigen::MatrixXd* gradient) {
+  impl_->Set(latent);
+  double cost = 0;
+  std::vector<double> g;
+  impl_->problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, gradient ? &g : nullptr, nullptr);
+  if (gradient) *gradient = Eigen::Map<const PackedLatent>(g.data(), impl_->t, 3);
+  return cost;
+}
+
+InferenceResult SequenceProblem::Solve(const Eigen::MatrixXd& initial_latent) {
+  InferenceResult result;
+  result.initial_latent = initial_latent;
+  result.initial_objective = Evaluate(initial_latent, nullptr);
+  ceres::Solver::Options options;
+  options.max_num_iterations = impl_->max_iterations;
+  // Frames couple only through the dynamics: J^T J is block tridiagonal. Eigen's sparse
+  // Cholesky needs no BLAS threads, which would fight the validation's own threads.
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &impl_->problem, &summary);
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.latent = Eigen::Map<const PackedLatent>(impl_->x.data(), impl_->t, 3);
+  result.final_objective = Evaluate(result.latent, nullptr);
+  result.poses_deg = impl_->model.MeanPoses(result.latent);
+  return result;
+}
+
+Eigen::MatrixXd NearestTrainingLatents(const GaitModel& model, const PoseObservations& observations) {
+  const std::vector<int> columns = ObservedChannels(model, observations);
+  const TrainingSet& set = model.data().set;
+  const Eigen::MatrixXd& u = observations.poses_deg;
   const int n = set.NumPoints(), c = static_cast<int>(columns.size());
   Eigen::MatrixXd points(n, c), queries(u.rows(), c);
   for (int j = 0; j < c; ++j) {
@@ -74,110 +273,10 @@ Eigen::MatrixXd NearestTrainingLatents(const GaitModel& model, const Eigen::Matr
   return latent;
 }
 
-}  // namespace
-
-SequenceEnergy::SequenceEnergy(const GaitModel& model, const PoseObservations& observations,
-                               const InferenceOptions& options)
-    : model_(model), u_(observations.poses_deg) {
-  const TrainingSet& set = model.data().set;
-  const int d = model.NumChannels();
-  weight_ = Eigen::RowVectorXd::Zero(d);
-  for (int k = 0; k < d; ++k) {
-    if (!observations.observed.empty() && !observations.observed[k]) {
-      u_.col(k).setZero();  // may hold anything, NaN included
-      continue;
-    }
-    double s2 = std::pow(options.observation_noise * set.scale[k], 2);
-    if (observations.noise_std_deg.size()) s2 += std::pow(observations.noise_std_deg[k], 2);
-    weight_[k] = 1.0 / s2;
-  }
-  if (model.HasDynamics()) dynamics_weight_ = 1.0 / std::pow(options.dynamics_tolerance * MeanLatentStep(model), 2);
-}
-
-double SequenceEnergy::Evaluate(const Eigen::MatrixXd& x, Eigen::MatrixXd* gradient) const {
-  JGPM_CHECK(x.rows() == u_.rows() && x.cols() == 3);
-  const int t_count = static_cast<int>(x.rows());
-  const Eigen::MatrixXd residual = model_.MeanPoses(x) - u_;  // T x D
-  const Eigen::MatrixXd weighted = residual.array().rowwise() * weight_.array();
-  double e = 0.5 * residual.cwiseProduct(weighted).sum();
-  if (gradient) model_.MeanPoses(x, &weighted, gradient);
-  for (int t = 0; t < t_count; ++t) {
-    Eigen::Vector3d density_gradient;
-    e -= model_.LogDensity(x.row(t).transpose(), gradient ? &density_gradient : nullptr);
-    if (gradient) gradient->row(t) -= density_gradient.transpose();
-  }
-  if (dynamics_weight_ > 0) {
-    for (int t = 1; t < t_count; ++t) {
-      Eigen::Matrix3d jacobian;
-      const Eigen::Vector3d r =
-          x.row(t).transpose() - model_.NextLatent(x.row(t - 1).transpose(), nullptr, gradient ? &jacobian : nullptr);
-      e += 0.5 * dynamics_weight_ * r.squaredNorm();
-      if (gradient) {
-        gradient->row(t) += dynamics_weight_ * r.transpose();
-        gradient->row(t - 1) -= dynamics_weight_ * (jacobian.transpose() * r).transpose();
-      }
-    }
-  }
-  return e;
-}
-
-bool InferenceOptions::Check(std::string* why) const {
-  if (!(observation_noise > 0)) *why = "observation_noise must be > 0";
-  else if (!(dynamics_tolerance > 0)) *why = "dynamics_tolerance must be > 0";
-  else if (max_iterations < 0) *why = "max_iterations must be >= 0";
-  else return true;
-  return false;
-}
-
 InferenceResult InferLatentSequence(const GaitModel& model, const PoseObservations& observations,
                                     const InferenceOptions& options) {
-  std::string why;
-  if (!options.Check(&why)) ThrowInputError("inference options", why);
-  const int d = model.NumChannels();
-  const Eigen::MatrixXd& u = observations.poses_deg;
-  if (u.rows() < 1 || u.cols() != d) {
-    ThrowInputError("observed poses", "expected T x " + std::to_string(d) + " channels, got " +
-                                          std::to_string(u.rows()) + " x " + std::to_string(u.cols()));
-  }
-  if (!observations.observed.empty() && static_cast<int>(observations.observed.size()) != d) {
-    ThrowInputError("observed channels", "expected " + std::to_string(d) + " flags");
-  }
-  if (observations.noise_std_deg.size() && (observations.noise_std_deg.size() != d ||
-                                            !(observations.noise_std_deg.array() >= 0).all())) {
-    ThrowInputError("observation noise", "expected " + std::to_string(d) + " standard deviations >= 0");
-  }
-  bool any = observations.observed.empty();
-  for (int k = 0; k < d && !any; ++k) any = observations.observed[k];
-  if (!any) ThrowInputError("observed channels", "at least one channel must be observed");
-  for (int t = 0; t < u.rows(); ++t) {
-    for (int k = 0; k < d; ++k) {
-      if ((observations.observed.empty() || observations.observed[k]) && !std::isfinite(u(t, k))) {
-        ThrowInputError("observed poses", "pose " + std::to_string(t) + ", channel " +
-                                              model.data().set.channel_names[k] + " is not finite");
-      }
-    }
-  }
-
-  InferenceResult result;
-  result.initial_latent = NearestTrainingLatents(model, u, observations.observed);
-  const int t = static_cast<int>(u.rows());
-  std::vector<double> x(3 * t);
-  for (int i = 0; i < t; ++i) {
-    for (int c = 0; c < 3; ++c) x[3 * i + c] = result.initial_latent(i, c);
-  }
-  const SequenceEnergy energy(model, observations, options);
-  const ceres::GradientProblem problem(new CeresEnergy(energy, t));
-  problem.Evaluate(x.data(), &result.initial_objective, nullptr);
-  ceres::GradientProblemSolver::Options solver;
-  solver.max_num_iterations = options.max_iterations;
-  solver.logging_type = ceres::SILENT;
-  ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(solver, problem, x.data(), &summary);
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.final_objective = summary.final_cost;
-  result.latent = Eigen::Map<const PackedLatent>(x.data(), t, 3);
-  result.poses_deg = model.MeanPoses(result.latent);
-  return result;
+  SequenceProblem problem(model, observations, options);
+  return problem.Solve(NearestTrainingLatents(model, observations));
 }
 
 }  // namespace jgpm
