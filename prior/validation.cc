@@ -1,0 +1,246 @@
+#include "prior/validation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <thread>
+
+#include "io/asf.h"
+#include "io/error.h"
+#include "io/text_reader.h"
+#include "prior/training_set.h"
+
+namespace jgpm {
+namespace {
+
+double StdDev(const std::vector<double>& v) {
+  if (v.size() < 2) return 0;
+  double mean = 0, sum = 0;
+  for (double x : v) mean += x / v.size();
+  for (double x : v) sum += (x - mean) * (x - mean);
+  return std::sqrt(sum / (v.size() - 1));
+}
+
+double Mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0 : sum / v.size();
+}
+
+// Error of one trial under one case, for noise draw `draw` (filtering; 0 otherwise).
+double TrialError(const GaitModel& model, const ValidationTrial& trial, int trial_index,
+                  const ValidationCase& c, int draw, const InferenceOptions& inference) {
+  const Eigen::MatrixXd truth = ScaleGait(trial.poses_deg, c.scale);
+  const int d = static_cast<int>(truth.cols());
+  PoseObservations observations;
+  observations.poses_deg = truth;
+  if (c.task == ValidationTask::kReconstruction) {
+    const std::vector<std::string_view> joints = MissingJoints(c.missing);
+    const std::vector<int>& channel_joints = model.data().set.channel_joints;
+    observations.observed.assign(d, true);
+    for (int k = 0; k < d; ++k) {
+      const std::string_view joint = GaitJoints()[channel_joints[k]].name;
+      if (std::find(joints.begin(), joints.end(), joint) != joints.end()) observations.observed[k] = false;
+    }
+  }
+  if (c.task == ValidationTask::kFiltering) {
+    const Eigen::RowVectorXd channel_std =
+        ((truth.rowwise() - truth.colwise().mean()).colwise().squaredNorm() / truth.rows()).cwiseSqrt();
+    observations.noise_std_deg = c.noise * channel_std.transpose();
+    std::mt19937_64 random(1000003ULL * draw + trial_index);
+    std::normal_distribution<double> normal(0, 1);
+    for (int t = 0; t < truth.rows(); ++t) {
+      for (int k = 0; k < d; ++k) observations.poses_deg(t, k) += observations.noise_std_deg[k] * normal(random);
+    }
+  }
+  const InferenceResult result = InferLatentSequence(model, observations, inference);
+  return MeanJointErrorMm(*trial.kinematics, result.poses_deg, truth);
+}
+
+}  // namespace
+
+std::string_view TaskName(ValidationTask task) {
+  switch (task) {
+    case ValidationTask::kInterpolation: return "interpolation";
+    case ValidationTask::kReconstruction: return "reconstruction";
+    case ValidationTask::kFiltering: return "filtering";
+  }
+  return "?";
+}
+
+bool ParseTask(std::string_view name, ValidationTask* task) {
+  for (ValidationTask t : {ValidationTask::kInterpolation, ValidationTask::kReconstruction, ValidationTask::kFiltering}) {
+    if (TaskName(t) == name) {
+      *task = t;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string_view MissingPartName(MissingPart part) {
+  switch (part) {
+    case MissingPart::kNone: return "none";
+    case MissingPart::kLeftArm: return "left-arm";
+    case MissingPart::kLeftLeg: return "left-leg";
+    case MissingPart::kLeftSide: return "left-side";
+  }
+  return "?";
+}
+
+bool ParseMissingPart(std::string_view name, MissingPart* part) {
+  for (MissingPart p : {MissingPart::kNone, MissingPart::kLeftArm, MissingPart::kLeftLeg, MissingPart::kLeftSide}) {
+    if (MissingPartName(p) == name) {
+      *part = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string_view> MissingJoints(MissingPart part) {
+  const std::vector<std::string_view> arm = {"lhumerus", "lradius", "lwrist"};
+  const std::vector<std::string_view> leg = {"lfemur", "ltibia", "lfoot"};
+  switch (part) {
+    case MissingPart::kNone: return {};
+    case MissingPart::kLeftArm: return arm;
+    case MissingPart::kLeftLeg: return leg;
+    case MissingPart::kLeftSide: {
+      std::vector<std::string_view> side = arm;
+      side.insert(side.end(), leg.begin(), leg.end());
+      return side;
+    }
+  }
+  return {};
+}
+
+bool ValidationCase::Check(std::string* why) const {
+  if (!(scale > 0)) *why = "scale must be > 0";
+  else if ((task == ValidationTask::kReconstruction) != (missing != MissingPart::kNone)) {
+    *why = "missing joints go with reconstruction, and reconstruction needs them";
+  } else if (task == ValidationTask::kFiltering && !(noise > 0)) *why = "filtering needs a noise level > 0";
+  else if (task != ValidationTask::kFiltering && noise != 0) *why = "noise goes with filtering";
+  else if (draws < 1) *why = "draws must be >= 1";
+  else return true;
+  return false;
+}
+
+std::string ValidationCase::Label() const {
+  char scale_text[32];
+  std::snprintf(scale_text, sizeof(scale_text), " s=%g", scale);
+  std::string label(TaskName(task));
+  if (task == ValidationTask::kReconstruction) label += " " + std::string(MissingPartName(missing));
+  if (task == ValidationTask::kFiltering) {
+    char noise_text[32];
+    std::snprintf(noise_text, sizeof(noise_text), " %g%%", 100 * noise);
+    label += noise_text;
+  }
+  return label + scale_text;
+}
+
+std::vector<ValidationTrial> LoadValidationTrials(const GaitDataset& dataset, const GaitModel& model) {
+  std::vector<ValidationTrial> trials;
+  const std::vector<std::string>& channels = model.data().set.channel_names;
+  std::map<std::string, std::shared_ptr<const GaitPoseKinematics>> skeletons;  // by ASF path
+  for (const GaitTrial& trial : dataset.trials) {
+    if (!trial.cycle.clean) continue;
+    std::shared_ptr<const GaitPoseKinematics>& kinematics = skeletons[trial.asf];
+    if (!kinematics) {
+      const std::filesystem::path path = std::filesystem::path(dataset.data_root) / trial.asf;
+      kinematics = std::make_shared<GaitPoseKinematics>(ParseAsf(ReadTextFile(path, "an ASF skeleton"), path.string()),
+                                                        path.string());
+      if (kinematics->layout().channel_names() != channels) {
+        ThrowInputError(path.string(), "its gait channels differ from the model's");
+      }
+    }
+    if (trial.cycle.poses.cols() != static_cast<int>(channels.size())) {
+      ThrowInputError("dataset " + dataset.split, "trial " + trial.id.name + " has " +
+                                                      std::to_string(trial.cycle.poses.cols()) + " channels, the model " +
+                                                      std::to_string(channels.size()));
+    }
+    trials.push_back({trial.id.name, trial.cycle.poses, kinematics});
+  }
+  if (trials.empty()) ThrowInputError("dataset " + dataset.split, "has no clean gait cycle to validate on");
+  return trials;
+}
+
+ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTrial>& trials,
+                          const ValidationCase& c, const InferenceOptions& inference, int threads) {
+  std::string why;
+  if (!c.Check(&why)) ThrowInputError("validation case " + c.Label(), why);
+  const auto start = std::chrono::steady_clock::now();
+  const int n = static_cast<int>(trials.size());
+  const int draws = c.task == ValidationTask::kFiltering ? c.draws : 1;
+  // errors[i * draws + k]: trial i, draw k. Workers take trials by index, so the result is
+  // the same for any number of threads.
+  std::vector<double> errors(static_cast<size_t>(n) * draws);
+  std::vector<std::string> failures(n);
+  auto work = [&](int worker, int workers) {
+    for (int i = worker; i < n; i += workers) {
+      try {
+        for (int k = 0; k < draws; ++k) errors[i * draws + k] = TrialError(model, trials[i], i, c, k + 1, inference);
+      } catch (const InputError& e) {
+        failures[i] = e.what();
+      }
+    }
+  };
+  const int workers = std::max(1, std::min(threads, n));
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w, workers);
+  work(0, workers);
+  for (std::thread& t : pool) t.join();
+  for (int i = 0; i < n; ++i) {
+    if (!failures[i].empty()) ThrowInputError("trial " + trials[i].id, failures[i]);
+  }
+
+  ValidationResult result;
+  result.validation_case = c;
+  for (int i = 0; i < n; ++i) {
+    result.trials.push_back(trials[i].id);
+    result.trial_errors_mm.push_back(Mean(std::vector<double>(errors.begin() + i * draws, errors.begin() + (i + 1) * draws)));
+  }
+  result.mean_error_mm = Mean(result.trial_errors_mm);
+  if (c.task == ValidationTask::kFiltering) {
+    for (int k = 0; k < draws; ++k) {
+      double sum = 0;
+      for (int i = 0; i < n; ++i) sum += errors[i * draws + k];
+      result.draw_errors_mm.push_back(sum / n);
+    }
+    result.std_error_mm = StdDev(result.draw_errors_mm);
+  } else {
+    result.std_error_mm = StdDev(result.trial_errors_mm);
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+double MeanJointErrorMm(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
+                        const Eigen::MatrixXd& truth) {
+  JGPM_CHECK(estimated.rows() == truth.rows() && estimated.cols() == truth.cols());
+  double total = 0;
+  Eigen::Matrix3Xd a, b;
+  for (int t = 0; t < truth.rows(); ++t) {
+    const Eigen::VectorXd e = estimated.row(t).transpose(), g = truth.row(t).transpose();
+    kinematics.Compute(e.data(), &a);
+    kinematics.Compute(g.data(), &b);
+    total += (a - b).colwise().norm().mean();
+  }
+  return total / truth.rows();
+}
+
+std::vector<ValidationCase> PaperSuite() {
+  std::vector<ValidationCase> cases;
+  for (double scale : {1.25, 1.0, 0.667, 0.5, 0.4}) {
+    cases.push_back({ValidationTask::kInterpolation, scale, MissingPart::kNone, 0, 1});
+    for (MissingPart part : {MissingPart::kLeftArm, MissingPart::kLeftLeg, MissingPart::kLeftSide}) {
+      cases.push_back({ValidationTask::kReconstruction, scale, part, 0, 1});
+    }
+    for (double noise : {0.05, 0.10, 0.15}) cases.push_back({ValidationTask::kFiltering, scale, MissingPart::kNone, noise, 5});
+  }
+  return cases;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,83 @@
+// Model validation as the paper does it (section VI-C; METHOD.md section 4): how well a
+// gait model represents gait cycles it was not trained on. Each test cycle is scaled about
+// its mean (eq. 5), then given to sequence inference (prior/inference.h) whole
+// (interpolation), with joints missing (reconstruction) or with white Gaussian noise
+// (filtering); the error is the mean 3-D position error of the 17 measured joints, in mm,
+// between the model's poses and the clean scaled cycle, both on the test subject's own
+// skeleton.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "io/gait_dataset.h"
+#include "io/gait_pose.h"
+#include "prior/gait_model.h"
+#include "prior/inference.h"
+
+namespace jgpm {
+
+enum class ValidationTask { kInterpolation, kReconstruction, kFiltering };
+enum class MissingPart { kNone, kLeftArm, kLeftLeg, kLeftSide };
+
+std::string_view TaskName(ValidationTask task);  // "interpolation", ...
+bool ParseTask(std::string_view name, ValidationTask* task);
+std::string_view MissingPartName(MissingPart part);  // "none", "left-arm", "left-leg", "left-side"
+bool ParseMissingPart(std::string_view name, MissingPart* part);
+// GaitJoints() names of the joints a part leaves out (left arm: humerus, radius, wrist).
+std::vector<std::string_view> MissingJoints(MissingPart part);
+
+struct ValidationCase {
+  ValidationTask task = ValidationTask::kInterpolation;
+  double scale = 1.0;                        // stride scale applied to each test cycle
+  MissingPart missing = MissingPart::kNone;  // reconstruction: the joints not observed
+  double noise = 0;                          // filtering: noise std / each channel's std over the cycle
+  int draws = 5;                             // filtering: noise draws (seeds 1..draws)
+
+  bool Check(std::string* why) const;
+  // e.g. "interpolation s=0.5", "reconstruction left-arm s=1", "filtering 10% s=1".
+  std::string Label() const;
+};
+
+// One test cycle and the kinematics of its subject's skeleton.
+struct ValidationTrial {
+  std::string id;
+  Eigen::MatrixXd poses_deg;  // T x D
+  std::shared_ptr<const GaitPoseKinematics> kinematics;
+};
+
+// The clean cycles of a prepared dataset with their skeletons, read from its data root.
+// InputError if a skeleton cannot be read or has other channels than `model`, or if no
+// trial has a clean cycle.
+std::vector<ValidationTrial> LoadValidationTrials(const GaitDataset& dataset, const GaitModel& model);
+
+struct ValidationResult {
+  ValidationCase validation_case;
+  std::vector<std::string> trials;
+  std::vector<double> trial_errors_mm;  // per trial (filtering: mean over the draws)
+  std::vector<double> draw_errors_mm;   // filtering: mean over the trials, per draw
+  double mean_error_mm = 0;
+  double std_error_mm = 0;              // filtering: over the draws; else over the trials
+  double seconds = 0;
+};
+
+// Runs one case on every trial, on `threads` threads (the result does not depend on it).
+ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTrial>& trials,
+                          const ValidationCase& validation_case, const InferenceOptions& inference = {},
+                          int threads = 1);
+
+// Mean over poses and the 17 measured joints of the distance (mm) between the joints of
+// `estimated` and `truth` (both T x D, degrees) on one skeleton.
+double MeanJointErrorMm(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
+                        const Eigen::MatrixXd& truth);
+
+// The paper's experiments, each at stride scales 1.25, 1, 0.667, 0.5 and 0.4:
+// interpolation; reconstruction without the left arm, left leg and left side; filtering
+// at 5%, 10% and 15% noise with 5 draws.
+std::vector<ValidationCase> PaperSuite();
+
+}  // namespace jgpm

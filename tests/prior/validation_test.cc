@@ -1,0 +1,147 @@
+// Model validation: the joint-error measure against geometry, the paper's case list, and
+// Validate on a small model of synthetic walks whose training cycles it must reproduce.
+#include "prior/validation.h"
+
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "io/split.h"
+#include "prior_test_support.h"
+
+namespace jgpm {
+namespace {
+
+using test::ExpectInputError;
+
+std::shared_ptr<const GaitPoseKinematics> Kinematics35() {
+  return std::make_shared<GaitPoseKinematics>(ParseAsf(test::Skeleton35().asf, "35.asf"), "35.asf");
+}
+
+int Channel(const GaitPoseLayout& layout, const std::string& name) {
+  const auto& names = layout.channel_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  EXPECT_NE(it, names.end()) << name;
+  return static_cast<int>(it - names.begin());
+}
+
+// Turning the whole body by theta about the vertical axis through the root (the root has
+// no other rotation, so its ry channel is that turn) moves each joint along a chord of its
+// circle about the axis: 2 sin(theta/2) times its horizontal distance from the axis.
+TEST(MeanJointErrorMm, MatchesChordsOfATurnAboutTheVerticalAxis) {
+  const auto kinematics = Kinematics35();
+  const GaitPoseLayout& layout = kinematics->layout();
+  const GaitDataset walks = test::SyntheticWalks(2, 6);
+  Eigen::MatrixXd truth = walks.trials[0].cycle.poses;
+  truth.col(Channel(layout, "root.rx")).setZero();
+  truth.col(Channel(layout, "root.rz")).setZero();
+  const double theta_deg = 30;
+  Eigen::MatrixXd turned = truth;
+  turned.col(Channel(layout, "root.ry")).array() += theta_deg;
+
+  double expected = 0;
+  Eigen::Matrix3Xd joints;
+  for (int t = 0; t < truth.rows(); ++t) {
+    const Eigen::VectorXd pose = truth.row(t).transpose();
+    kinematics->Compute(pose.data(), &joints);
+    const Eigen::VectorXd horizontal = (joints.row(0).array().square() + joints.row(2).array().square()).sqrt();
+    expected += 2 * std::sin(theta_deg * M_PI / 360) * horizontal.mean() / truth.rows();
+  }
+  EXPECT_GT(expected, 10.0);
+  EXPECT_NEAR(MeanJointErrorMm(*kinematics, turned, truth), expected, 1e-9 * expected);
+  EXPECT_EQ(MeanJointErrorMm(*kinematics, truth, truth), 0.0);
+}
+
+TEST(ValidationCase, PaperSuiteAndChecks) {
+  const std::vector<ValidationCase> suite = PaperSuite();
+  ASSERT_EQ(suite.size(), 5u * 7u);  // 5 scales x (interpolation, 3 reconstructions, 3 noise levels)
+  std::set<std::string> labels;
+  std::string why;
+  for (const ValidationCase& c : suite) {
+    EXPECT_TRUE(c.Check(&why)) << c.Label() << ": " << why;
+    labels.insert(c.Label());
+    if (c.task == ValidationTask::kFiltering) {
+      EXPECT_EQ(c.draws, 5);
+    }
+  }
+  EXPECT_EQ(labels.size(), suite.size());
+  EXPECT_TRUE(labels.count("interpolation s=0.667"));
+  EXPECT_TRUE(labels.count("reconstruction left-side s=1.25"));
+  EXPECT_TRUE(labels.count("filtering 15% s=0.4"));
+
+  EXPECT_FALSE((ValidationCase{ValidationTask::kReconstruction, 1, MissingPart::kNone}).Check(&why));
+  EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, 1, MissingPart::kLeftArm}).Check(&why));
+  EXPECT_FALSE((ValidationCase{ValidationTask::kFiltering, 1, MissingPart::kNone, 0}).Check(&why));
+  EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, -1}).Check(&why));
+  EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, 1, MissingPart::kNone, 0.1}).Check(&why));
+}
+
+TEST(MissingJoints, ArmLegAndSideOfTheLeft) {
+  std::set<std::string_view> known;
+  for (const GaitJoint& j : GaitJoints()) known.insert(j.name);
+  const auto arm = MissingJoints(MissingPart::kLeftArm), leg = MissingJoints(MissingPart::kLeftLeg);
+  const auto side = MissingJoints(MissingPart::kLeftSide);
+  EXPECT_EQ(arm.size(), 3u);
+  EXPECT_EQ(leg.size(), 3u);
+  EXPECT_EQ(std::set<std::string_view>(side.begin(), side.end()).size(), 6u);
+  for (std::string_view j : side) {
+    EXPECT_TRUE(known.count(j)) << j;
+    EXPECT_EQ(j[0], 'l') << j;
+  }
+  EXPECT_TRUE(MissingJoints(MissingPart::kNone).empty());
+}
+
+// The model's own training cycles: interpolation must give back about the training
+// reconstruction error; hiding joints and adding noise cost more; the result does not
+// depend on the thread count.
+TEST(Validate, TrainingCyclesComeBackAndHarderCasesCostMore) {
+  const auto model = test::TrainOnSyntheticWalks(ModelKind::kJgpm);
+  const auto kinematics = Kinematics35();
+  const GaitDataset walks = test::SyntheticWalks(5, 10);
+  std::vector<ValidationTrial> trials;
+  for (const GaitTrial& t : walks.trials) trials.push_back({t.id.name, t.cycle.poses, kinematics});
+
+  const ValidationCase interpolation{ValidationTask::kInterpolation, 1.0};
+  const ValidationResult a = Validate(*model, trials, interpolation, {}, 1);
+  const ValidationResult b = Validate(*model, trials, interpolation, {}, 2);
+  EXPECT_EQ(a.trial_errors_mm, b.trial_errors_mm);
+  ASSERT_EQ(a.trial_errors_mm.size(), trials.size());
+  double training_error = 0;
+  for (size_t i = 0; i < trials.size(); ++i) {
+    const Eigen::MatrixXd reproduced = model->MeanPoses(model->latent().middleRows(10 * i, 10));
+    training_error += MeanJointErrorMm(*kinematics, reproduced, trials[i].poses_deg) / trials.size();
+  }
+  EXPECT_LT(a.mean_error_mm, training_error + 2.0) << "training reconstruction " << training_error;
+  double mean = 0;
+  for (double e : a.trial_errors_mm) mean += e / a.trial_errors_mm.size();
+  EXPECT_NEAR(a.mean_error_mm, mean, 1e-12);
+
+  const ValidationResult side =
+      Validate(*model, trials, {ValidationTask::kReconstruction, 1.0, MissingPart::kLeftSide}, {}, 2);
+  EXPECT_GT(side.mean_error_mm, a.mean_error_mm);
+  const ValidationResult low = Validate(*model, trials, {ValidationTask::kFiltering, 1.0, MissingPart::kNone, 0.05, 3}, {}, 2);
+  const ValidationResult high = Validate(*model, trials, {ValidationTask::kFiltering, 1.0, MissingPart::kNone, 0.3, 3}, {}, 2);
+  ASSERT_EQ(high.draw_errors_mm.size(), 3u);
+  EXPECT_GT(high.mean_error_mm, low.mean_error_mm);
+  EXPECT_GT(high.std_error_mm, 0.0);  // different draws, different errors
+
+  ExpectInputError([&] { Validate(*model, trials, {ValidationTask::kFiltering, 1.0}); }, {"filtering", "noise"});
+}
+
+// The test split's clean cycles load with each subject's own skeleton.
+TEST(LoadValidationTrials, TestSplitWithEachSubjectsSkeleton) {
+  const auto model = test::TrainOnSyntheticWalks(ModelKind::kPca);
+  const GaitDataset dataset = PrepareGaitDataset(test::CmuRoot(), "test", test::SplitTrials("test"), GaitCycleOptions{});
+  const std::vector<ValidationTrial> trials = LoadValidationTrials(dataset, *model);
+  ASSERT_EQ(static_cast<int>(trials.size()), dataset.NumClean());
+  std::set<const GaitPoseKinematics*> skeletons;
+  for (const ValidationTrial& t : trials) {
+    skeletons.insert(t.kinematics.get());
+    EXPECT_EQ(t.poses_deg.cols(), model->NumChannels());
+  }
+  EXPECT_EQ(skeletons.size(), 3u);  // subjects 07, 35, 39
+}
+
+}  // namespace
+}  // namespace jgpm
