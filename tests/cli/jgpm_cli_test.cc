@@ -28,7 +28,7 @@ Result Jgpm(const std::string& arguments) {
 int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(JgpmCli, HelpOnEverySubcommand) {
-  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent"}) {
+  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent", "eval"}) {
     const Result r = Jgpm(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command << r.err;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << command;
@@ -205,6 +205,71 @@ TEST(JgpmCli, TrainAndPlotBadInput) {
   EXPECT_NE(r.err.find("version 99 is not supported"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "p.png"));
   EXPECT_FALSE(fs::exists(dir.path() / "m.json"));
+}
+
+// `jgpm eval`: one case to JSON, the paper suite on two trials to CSV and charts.
+TEST(JgpmCli, EvalOneCaseAndTheSuite) {
+  test::TempDir dir;
+  const std::string data = " --data " + test::CmuRoot().string();
+  const fs::path pca = dir.path() / "pca.json", gplvm = dir.path() / "gplvm.json";
+  ASSERT_EQ(Jgpm("train --model pca" + data + " --out " + pca.string()).status, 0);
+  ASSERT_EQ(Jgpm("train --model gplvm --max-iterations 3" + data + " --out " + gplvm.string()).status, 0);
+  const fs::path trials = dir.Write("two.txt", "07_01\n35_10\n");
+
+  const fs::path json = dir.path() / "filtering.json";
+  Result r = Jgpm("eval --model " + pca.string() + " --task filtering --noise 0.1 --draws 2 --scale 0.5 --trials " +
+                  trials.string() + data + " --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadTextFile(json, "json"));
+  ASSERT_EQ(j["trials"].size(), 2u);
+  EXPECT_EQ(j["trials"][0]["trial"], "07_01");
+  EXPECT_NEAR(j["mean_error_mm"].get<double>(),
+              (j["trials"][0]["error_mm"].get<double>() + j["trials"][1]["error_mm"].get<double>()) / 2, 1e-9);
+  EXPECT_EQ(j["draw_errors_mm"].size(), 2u);
+  EXPECT_EQ(j["case"], "filtering 10% s=0.5");
+  EXPECT_NE(r.out.find("filtering 10% s=0.5"), std::string::npos) << r.out;
+
+  const fs::path out = dir.path() / "suite";
+  r = Jgpm("eval --suite paper --model " + pca.string() + " --model " + gplvm.string() + " --trials " +
+           trials.string() + data + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string csv = ReadTextFile(out / "paper.csv", "csv");
+  EXPECT_EQ(Lines(csv), 1 + 2 * 35);
+  EXPECT_NE(csv.find("gplvm,reconstruction,left-side,0,0.667,"), std::string::npos) << csv;
+  for (const char* png : {"interpolation.png", "reconstruction.png", "filtering.png"}) {
+    EXPECT_GT(fs::file_size(out / png), 5000u) << png;
+  }
+}
+
+TEST(JgpmCli, EvalBadInput) {
+  test::TempDir dir;
+  const fs::path json = dir.path() / "e.json";
+  const fs::path pca = dir.path() / "pca.json";
+  ASSERT_EQ(Jgpm("train --model pca --data " + test::CmuRoot().string() + " --out " + pca.string()).status, 0);
+  const struct {
+    std::string arguments;
+    int status;
+    std::string message;
+  } cases[] = {
+      {"--task reconstruction", 1, "--task reconstruction: missing joints go with reconstruction"},
+      {"--task filtering", 1, "--task filtering: filtering needs a noise level > 0"},
+      {"--task interpolation --missing left-arm", 1, "missing joints go with reconstruction"},
+      {"--task sideways", 2, "--task"},
+      {"--task filtering --noise -1", 2, "--noise"},
+      {"--suite paper", 1, "--suite paper: needs --out DIR"},
+      {"", 1, "give --task"},
+      {"--task interpolation --trials nosuchsplit", 1, "nosuchsplit"},
+  };
+  for (const auto& c : cases) {
+    const Result r = Jgpm("eval --model " + pca.string() + " " + c.arguments + " --json " + json.string());
+    EXPECT_EQ(r.status, c.status) << c.arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.arguments << "\n" << r.err;
+    EXPECT_EQ(Lines(r.err), 1) << r.err;
+  }
+  const Result r = Jgpm("eval --model " + (dir.path() / "none.json").string() + " --task interpolation --json " + json.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("none.json"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(json));
 }
 
 TEST(JgpmCli, CyclesWithoutDataListsThePlacesTried) {

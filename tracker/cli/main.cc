@@ -7,6 +7,7 @@
 #include "io/error.h"
 #include "tracker/cli/data_commands.h"
 #include "tracker/cli/prior_commands.h"
+#include "tracker/cli/validation_commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"jgpm: gait priors (ML-JGPM) from motion capture and 3-D gait tracking in video"};
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   jgpm::cli::AddDataCommands(app);
   jgpm::cli::AddPriorCommands(app);
+  jgpm::cli::AddValidationCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here
   } catch (const CLI::Success& e) {

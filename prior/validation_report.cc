@@ -1,0 +1,207 @@
+#include "prior/validation_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/error.h"
+#include "io/text_reader.h"
+
+namespace jgpm {
+namespace {
+
+std::string Number(double value, const char* format = "%.4g") {
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+cv::Scalar ModelColour(int i) {  // BGR, distinguishable in print
+  static const cv::Scalar kColours[] = {{60, 60, 60},   {200, 120, 30}, {40, 160, 40},  {40, 40, 210},
+                                        {170, 60, 170}, {30, 170, 200}, {120, 80, 20},  {90, 90, 230},
+                                        {150, 150, 150}};
+  return kColours[i % 9];
+}
+
+void Text(cv::Mat& image, const std::string& text, cv::Point at, double scale = 0.45) {
+  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, {0, 0, 0}, 1, cv::LINE_AA);
+}
+
+// One panel: error (mm) against scale, a bar per model, whiskers for the standard deviation.
+struct Panel {
+  std::string title;
+  std::vector<double> scales;                               // groups, left to right
+  std::vector<std::vector<const ValidationResult*>> bars;   // [model][scale], may hold nulls
+};
+
+void DrawPanel(cv::Mat& image, const cv::Rect& area, const Panel& panel, double top_mm, bool whiskers) {
+  const int left = area.x + 50, bottom = area.y + area.height - 30, height = area.height - 60;
+  const int width = area.width - 60;
+  Text(image, panel.title, {area.x + 50, area.y + 18}, 0.5);
+  cv::line(image, {left, bottom}, {left + width, bottom}, {0, 0, 0});
+  cv::line(image, {left, bottom}, {left, bottom - height}, {0, 0, 0});
+  const double step = std::pow(10, std::floor(std::log10(top_mm / 2)));
+  const double tick = top_mm / step > 8 ? 2 * step : step;
+  for (double mm = 0; mm <= top_mm + 1e-9; mm += tick) {
+    const int y = bottom - static_cast<int>(height * mm / top_mm);
+    cv::line(image, {left - 4, y}, {left + width, y}, {225, 225, 225});
+    Text(image, Number(mm, "%g"), {area.x + 5, y + 4}, 0.4);
+  }
+  Text(image, "mm", {area.x + 10, bottom - height - 8}, 0.4);
+  const int groups = static_cast<int>(panel.scales.size()), models = static_cast<int>(panel.bars.size());
+  const double group_width = static_cast<double>(width) / std::max(1, groups);
+  const double bar_width = group_width * 0.8 / std::max(1, models);
+  for (int g = 0; g < groups; ++g) {
+    const double x0 = left + g * group_width + group_width * 0.1;
+    Text(image, "s=" + Number(panel.scales[g], "%g"), {static_cast<int>(x0 + group_width * 0.25), bottom + 18}, 0.4);
+    for (int m = 0; m < models; ++m) {
+      const ValidationResult* r = panel.bars[m][g];
+      if (!r) continue;
+      const int xa = static_cast<int>(x0 + m * bar_width), xb = static_cast<int>(x0 + (m + 1) * bar_width) - 1;
+      const int y = bottom - static_cast<int>(height * std::min(r->mean_error_mm, top_mm) / top_mm);
+      cv::rectangle(image, {xa, y}, {std::max(xa, xb), bottom}, ModelColour(m), cv::FILLED);
+      if (whiskers && r->std_error_mm > 0) {
+        const int xm = (xa + xb) / 2;
+        const int ya = bottom - static_cast<int>(height * std::min(r->mean_error_mm + r->std_error_mm, top_mm) / top_mm);
+        const int yb = bottom - static_cast<int>(height * std::max(r->mean_error_mm - r->std_error_mm, 0.0) / top_mm);
+        cv::line(image, {xm, ya}, {xm, yb}, {0, 0, 0});
+      }
+    }
+  }
+}
+
+void WritePng(const cv::Mat& image, const std::filesystem::path& path) {
+  std::vector<uchar> bytes;
+  if (!cv::imencode(".png", image, bytes)) ThrowInputError(path.string(), "PNG encoding failed");
+  WriteFileAtomic(path, std::string(bytes.begin(), bytes.end()));
+}
+
+// A chart of `panels` side by side with a legend of the models underneath.
+void WriteChart(const std::vector<Panel>& panels, const std::vector<std::string>& models, const std::string& title,
+                bool whiskers, const std::filesystem::path& path) {
+  double top = 1;
+  for (const Panel& p : panels) {
+    for (const auto& row : p.bars) {
+      for (const ValidationResult* r : row) {
+        if (r) top = std::max(top, r->mean_error_mm + (whiskers ? r->std_error_mm : 0));
+      }
+    }
+  }
+  top *= 1.08;
+  const int panel_width = 520, panel_height = 380, legend_rows = (static_cast<int>(models.size()) + 3) / 4;
+  cv::Mat image(panel_height + 40 + 22 * legend_rows, panel_width * static_cast<int>(panels.size()), CV_8UC3,
+                cv::Scalar(255, 255, 255));
+  Text(image, title, {10, 22}, 0.6);
+  for (size_t i = 0; i < panels.size(); ++i) {
+    DrawPanel(image, cv::Rect(static_cast<int>(i) * panel_width, 30, panel_width, panel_height), panels[i], top, whiskers);
+  }
+  for (size_t m = 0; m < models.size(); ++m) {
+    const cv::Point at(20 + static_cast<int>(m % 4) * 260, panel_height + 45 + 22 * static_cast<int>(m / 4));
+    cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(static_cast<int>(m)), cv::FILLED);
+    Text(image, models[m], {at.x + 20, at.y}, 0.45);
+  }
+  WritePng(image, path);
+}
+
+}  // namespace
+
+nlohmann::json ValidationResultJson(const ValidationResult& r) {
+  const ValidationCase& c = r.validation_case;
+  nlohmann::json j;
+  j["case"] = c.Label();
+  j["task"] = std::string(TaskName(c.task));
+  j["scale"] = c.scale;
+  if (c.task == ValidationTask::kReconstruction) j["missing"] = std::string(MissingPartName(c.missing));
+  if (c.task == ValidationTask::kFiltering) {
+    j["noise"] = c.noise;
+    j["draws"] = c.draws;
+    j["draw_errors_mm"] = r.draw_errors_mm;
+  }
+  j["mean_error_mm"] = r.mean_error_mm;
+  j["std_error_mm"] = r.std_error_mm;
+  nlohmann::json trials = nlohmann::json::array();
+  for (size_t i = 0; i < r.trials.size(); ++i) trials.push_back({{"trial", r.trials[i]}, {"error_mm", r.trial_errors_mm[i]}});
+  j["trials"] = trials;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+std::string SuiteCsv(const std::vector<ModelResults>& suite) {
+  std::string csv = "model,task,missing,noise,scale,mean_error_mm,std_error_mm,trials,seconds\n";
+  for (const ModelResults& m : suite) {
+    for (const ValidationResult& r : m.results) {
+      const ValidationCase& c = r.validation_case;
+      csv += m.model + "," + std::string(TaskName(c.task)) + "," + std::string(MissingPartName(c.missing)) + "," +
+             Number(c.noise, "%g") + "," + Number(c.scale, "%g") + "," + Number(r.mean_error_mm, "%.3f") + "," +
+             Number(r.std_error_mm, "%.3f") + "," + std::to_string(r.trials.size()) + "," +
+             Number(r.seconds, "%.2f") + "\n";
+    }
+  }
+  return csv;
+}
+
+std::vector<std::filesystem::path> PlotSuite(const std::vector<ModelResults>& suite, const std::filesystem::path& folder) {
+  std::vector<std::string> models;
+  for (const ModelResults& m : suite) models.push_back(m.model);
+  // Panels keyed by (task, condition), groups by scale in descending order as in the paper.
+  struct Key {
+    ValidationTask task;
+    MissingPart missing;
+    double noise;
+    bool operator<(const Key& o) const {
+      return std::tie(task, missing, noise) < std::tie(o.task, o.missing, o.noise);
+    }
+  };
+  std::map<Key, Panel> panels;
+  std::map<Key, std::set<double, std::greater<double>>> scales;
+  for (const ModelResults& m : suite) {
+    for (const ValidationResult& r : m.results) {
+      const ValidationCase& c = r.validation_case;
+      scales[{c.task, c.missing, c.noise}].insert(c.scale);
+    }
+  }
+  for (const auto& [key, scale_set] : scales) {
+    Panel& p = panels[key];
+    p.scales.assign(scale_set.begin(), scale_set.end());
+    p.bars.assign(suite.size(), std::vector<const ValidationResult*>(p.scales.size(), nullptr));
+    p.title = key.task == ValidationTask::kReconstruction ? std::string(MissingPartName(key.missing)) + " missing"
+              : key.task == ValidationTask::kFiltering    ? Number(100 * key.noise, "%g") + "% noise (mean, std over draws)"
+                                                          : "interpolation";
+  }
+  for (size_t m = 0; m < suite.size(); ++m) {
+    for (const ValidationResult& r : suite[m].results) {
+      const ValidationCase& c = r.validation_case;
+      Panel& p = panels[{c.task, c.missing, c.noise}];
+      const auto g = std::find(p.scales.begin(), p.scales.end(), c.scale) - p.scales.begin();
+      p.bars[m][g] = &r;
+    }
+  }
+  std::vector<std::filesystem::path> written;
+  const struct {
+    ValidationTask task;
+    const char* file;
+    const char* title;
+  } charts[] = {
+      {ValidationTask::kInterpolation, "interpolation.png", "Interpolation: mean 3-D joint error of unseen cycles scaled by s (Fig. 9)"},
+      {ValidationTask::kReconstruction, "reconstruction.png", "Reconstruction of missing joints, error over all 17 joints (Fig. 12)"},
+      {ValidationTask::kFiltering, "filtering.png", "Filtering white noise of a fraction of each channel's std (Fig. 13)"},
+  };
+  for (const auto& chart : charts) {
+    std::vector<Panel> selected;
+    for (const auto& [key, panel] : panels) {
+      if (key.task == chart.task) selected.push_back(panel);
+    }
+    if (selected.empty()) continue;
+    const std::filesystem::path path = folder / chart.file;
+    WriteChart(selected, models, chart.title, chart.task == ValidationTask::kFiltering, path);
+    written.push_back(path);
+  }
+  return written;
+}
+
+}  // namespace jgpm
