@@ -69,9 +69,13 @@ fs::path SkeletonForAmc(const fs::path& amc, const MotionFileOptions& options) {
   CheckInputFile(amc, "an AMC motion");
   std::error_code ec;
   const std::string stem = amc.stem().string();
+  fs::path same_stem = amc;
+  same_stem.replace_extension(".asf");  // how jgpm writes motions (jgpm synth)
+  if (fs::is_regular_file(same_stem, ec)) return same_stem;
   const fs::path sibling = amc.parent_path() / (stem.substr(0, stem.find('_')) + ".asf");
   if (stem.find('_') != std::string::npos && fs::is_regular_file(sibling, ec)) return sibling;
-  ThrowInputError(amc.string(), "needs its skeleton: pass --asf SKEL.asf (no " + sibling.string() +
+  ThrowInputError(amc.string(), "needs its skeleton: pass --asf SKEL.asf (no " + same_stem.string() +
+                                    (stem.find('_') != std::string::npos ? " or " + sibling.string() : std::string()) +
                                     " next to it)");
 }
 

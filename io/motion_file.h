@@ -23,8 +23,8 @@ struct MotionFileOptions {
   double bvh_mm_per_unit = 10.0;
 };
 
-// The skeleton of an AMC file: options.asf, else NN.asf next to NN_TT.amc. InputError when
-// neither exists.
+// The skeleton of an AMC file: options.asf, else X.asf next to X.amc, else NN.asf next to
+// NN_TT.amc (CMU). InputError when none exists.
 std::filesystem::path SkeletonForAmc(const std::filesystem::path& amc,
                                      const MotionFileOptions& options);
 

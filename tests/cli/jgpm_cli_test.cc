@@ -28,7 +28,7 @@ Result Jgpm(const std::string& arguments) {
 int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(JgpmCli, HelpOnEverySubcommand) {
-  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent", "eval"}) {
+  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent", "eval", "synth"}) {
     const Result r = Jgpm(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command << r.err;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << command;
@@ -270,6 +270,33 @@ TEST(JgpmCli, EvalBadInput) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("none.json"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(json));
+}
+
+TEST(JgpmCli, SynthWritesMotionAnAnimationToolLoads) {
+  test::TempDir dir;
+  const std::string data = " --data " + test::CmuRoot().string();
+  const fs::path jgpm = dir.path() / "jgpm.json", pca = dir.path() / "pca.json";
+  ASSERT_EQ(Jgpm("train --model jgpm --max-iterations 3" + data + " --out " + jgpm.string()).status, 0);
+  ASSERT_EQ(Jgpm("train --model pca" + data + " --out " + pca.string()).status, 0);
+  const fs::path amc = dir.path() / "walk.amc", png = dir.path() / "walk.png";
+  Result r = Jgpm("synth --model " + jgpm.string() + " --path inner-spiral --frames 40 --out " + amc.string() +
+                  " --png " + png.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir.path() / "walk.asf"));
+  EXPECT_TRUE(fs::exists(png));
+  r = Jgpm("data info " + amc.string() + " --fps 30");  // finds walk.asf beside it
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("frames 40"), std::string::npos) << r.out;
+
+  r = Jgpm("synth --model " + pca.string() + " --out " + amc.string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("manifold"), std::string::npos) << r.err;
+  r = Jgpm("synth --model " + jgpm.string() + " --out " + (dir.path() / "w.fbx").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(".amc or .bvh"), std::string::npos) << r.err;
+  r = Jgpm("synth --model " + jgpm.string() + " --path zigzag --out " + amc.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--path"), std::string::npos) << r.err;
 }
 
 TEST(JgpmCli, CyclesWithoutDataListsThePlacesTried) {

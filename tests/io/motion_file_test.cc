@@ -6,6 +6,7 @@
 #include "io/asf.h"
 #include "io/bvh.h"
 #include "io/text_reader.h"
+#include "small_asf.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -40,6 +41,19 @@ TEST(MotionFile, AmcWithoutSkeleton) {
   const fs::path amc = dir.Write("x_01.amc", ":FULLY-SPECIFIED\n:DEGREES\n1\n");
   ExpectInputError([&] { DescribeMotionFile(amc, {}); }, {"x_01.amc", "--asf"});
   ExpectInputError([&] { DescribeMotionFile(dir.path() / "none.amc", {}); }, {"none.amc", "no such file"});
+}
+
+// jgpm writes OUT.amc with OUT.asf beside it; that pairing is found first.
+TEST(MotionFile, AmcFindsTheSkeletonOfTheSameName) {
+  test::TempDir dir;
+  dir.Write("walk_3.asf", test::SmallAsfText());
+  const Skeleton skeleton = ParseAsf(test::SmallAsfText(), "small");
+  Motion motion;
+  motion.values = RowMatrixXd::Zero(2, skeleton.NumChannels());
+  WriteAmc(dir.path() / "walk_3.amc", motion, skeleton);
+  const std::string text = DescribeMotionFile(dir.path() / "walk_3.amc", {});
+  EXPECT_NE(text.find("walk_3.asf"), std::string::npos) << text;
+  ExpectInputError([&] { DescribeMotionFile(dir.path() / "other_3.amc", {}); }, {"other_3.amc"});
 }
 
 TEST(MotionFile, ConvertsBothWaysKeepingTheMotion) {

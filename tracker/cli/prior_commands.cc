@@ -3,6 +3,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include "io/text_reader.h"
 #include "prior/latent_plot.h"
 #include "prior/model_file.h"
+#include "prior/synthesis.h"
 #include "prior/train.h"
 
 namespace jgpm::cli {
@@ -96,6 +98,29 @@ void RunTrain(const TrainArguments& a) {
   std::printf("%swrote %s\n", DescribeModel(*model).c_str(), a.out.c_str());
 }
 
+struct SynthArguments {
+  std::string model;
+  std::string path = "outer-spiral";
+  std::string out;
+  std::string png;
+  SynthesisOptions options;
+};
+
+void RunSynth(const SynthArguments& a) {
+  SynthesisPath path;
+  ParseSynthesisPath(a.path, &path);
+  const std::string extension = std::filesystem::path(a.out).extension().string();
+  if (extension != ".amc" && extension != ".bvh") ThrowInputError("--out " + a.out, "expected a .amc or .bvh file name");
+  const auto model = ReadModelFile(a.model);
+  const SynthesisResult result = Synthesise(*model, path, a.options);
+  const Motion motion = PosesToMotion(*model, result.poses_deg, a.options.frames_per_second);
+  for (const auto& file : WriteSynthesis(*model, motion, a.out)) std::printf("wrote %s\n", file.string().c_str());
+  if (!a.png.empty()) {
+    PlotStickFigures(*model, motion, a.png);
+    std::printf("wrote %s\n", a.png.c_str());
+  }
+}
+
 }  // namespace
 
 void AddPriorCommands(CLI::App& app) {
@@ -148,6 +173,24 @@ void AddPriorCommands(CLI::App& app) {
     PlotLatentSpace(*model, *plot_out);
     std::printf("wrote %s\n", plot_out->c_str());
   });
+
+  auto s = std::make_shared<SynthArguments>();
+  CLI::App* synth = app.add_subcommand("synth", "Synthesise walking by sampling a JGPM-family latent space (paper Fig. 14)");
+  synth->add_option("--model", s->model, "model file (jgpm, mljgpm-torus or mljgpm-cyl)")->required();
+  synth->add_option("--path", s->path,
+                    "line: one pose, stride growing across the layers; outer-/inner-spiral: walking with the "
+                    "largest / smallest strides")
+      ->check(CLI::IsMember({"line", "outer-spiral", "inner-spiral"}))
+      ->capture_default_str();
+  synth->add_option("--out", s->out, "OUT.amc (with OUT.asf beside it) or OUT.bvh")->required();
+  synth->add_option("--png", s->png, "also a strip of stick figures");
+  synth->add_option("--frames", s->options.frames, "frames")->check(CLI::Range(2, 100000))->capture_default_str();
+  synth->add_option("--fps", s->options.frames_per_second, "frame rate written")->check(CLI::PositiveNumber)->capture_default_str();
+  synth->add_option("--cycles", s->options.cycles, "spirals: walking cycles")->check(CLI::PositiveNumber)->capture_default_str();
+  synth->add_option("--gait-span", s->options.gait_span, "spirals: gait positions travelled")->capture_default_str();
+  synth->add_option("--phase", s->options.phase, "line: pose phase in [0, 1)")->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  synth->add_option("--gait", s->options.gait, "gait position (line) or start (spirals)")->capture_default_str();
+  synth->callback([s] { RunSynth(*s); });
 }
 
 }  // namespace jgpm::cli
