@@ -261,7 +261,8 @@ TEST(JgpmCli, EvalBadInput) {
       {"--task interpolation --trials nosuchsplit", 1, "nosuchsplit"},
   };
   for (const auto& c : cases) {
-    const Result r = Jgpm("eval --model " + pca.string() + " " + c.arguments + " --json " + json.string());
+    const Result r = Jgpm("eval --model " + pca.string() + " " + c.arguments + " --data " + test::CmuRoot().string() +
+                          " --json " + json.string());
     EXPECT_EQ(r.status, c.status) << c.arguments << "\n" << r.err;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.arguments << "\n" << r.err;
     EXPECT_EQ(Lines(r.err), 1) << r.err;

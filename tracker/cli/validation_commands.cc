@@ -64,9 +64,9 @@ void RunEval(const EvalArguments& a) {
   // Check everything that can fail before the long part: models, trials, output folder.
   std::vector<std::unique_ptr<GaitModel>> models;
   for (const std::string& path : a.models) models.push_back(ReadModelFile(path));
+  const std::vector<TrialId> trial_ids = ReadSplit(ResolveSplitPath(a.trials, JGPM_SPLITS_DIR));
   const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
-  const GaitDataset dataset =
-      PrepareGaitDataset(root, a.trials, ReadSplit(ResolveSplitPath(a.trials, JGPM_SPLITS_DIR)), GaitCycleOptions{});
+  const GaitDataset dataset = PrepareGaitDataset(root, a.trials, trial_ids, GaitCycleOptions{});
   if (!a.out.empty()) std::filesystem::create_directories(a.out);
   const int threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   SetLinearAlgebraThreads(1);  // the trials run in parallel instead
