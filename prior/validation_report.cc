@@ -93,15 +93,19 @@ void WriteChart(const std::vector<Panel>& panels, const std::vector<std::string>
     }
   }
   top *= 1.08;
-  const int panel_width = 520, panel_height = 380, legend_rows = (static_cast<int>(models.size()) + 3) / 4;
-  cv::Mat image(panel_height + 40 + 22 * legend_rows, panel_width * static_cast<int>(panels.size()), CV_8UC3,
-                cv::Scalar(255, 255, 255));
+  // At least two panels wide, so the title and a legend of four columns fit.
+  const int panel_width = 520, panel_height = 380;
+  const int width = panel_width * std::max<int>(2, static_cast<int>(panels.size()));
+  const int columns = width / 260, legend_rows = (static_cast<int>(models.size()) + columns - 1) / columns;
+  cv::Mat image(panel_height + 40 + 22 * legend_rows, width, CV_8UC3, cv::Scalar(255, 255, 255));
   Text(image, title, {10, 22}, 0.6);
   for (size_t i = 0; i < panels.size(); ++i) {
-    DrawPanel(image, cv::Rect(static_cast<int>(i) * panel_width, 30, panel_width, panel_height), panels[i], top, whiskers);
+    const int w = width / static_cast<int>(panels.size());
+    DrawPanel(image, cv::Rect(static_cast<int>(i) * w, 30, w, panel_height), panels[i], top, whiskers);
   }
   for (size_t m = 0; m < models.size(); ++m) {
-    const cv::Point at(20 + static_cast<int>(m % 4) * 260, panel_height + 45 + 22 * static_cast<int>(m / 4));
+    const int column = static_cast<int>(m) % columns, row = static_cast<int>(m) / columns;
+    const cv::Point at(20 + column * 260, panel_height + 45 + 22 * row);
     cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(static_cast<int>(m)), cv::FILLED);
     Text(image, models[m], {at.x + 20, at.y}, 0.45);
   }
