@@ -2,7 +2,7 @@
 # Quick start, step 1: install missing packages, build, and run the main job on its default
 # input: prepare the default training gait dataset (one gait cycle per walking trial of
 # datasets_scripts/splits/train.txt), learn the ML-JGPM torus prior from it with
-# topology-aware local learning (about 20 s on 2 cores) and plot its latent space.
+# topology-aware local learning (about 4 min on 2 cores) and plot its latent space.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 datasets_scripts/install_deps.sh
