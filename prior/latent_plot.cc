@@ -2,11 +2,10 @@
 
 #include <cmath>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
-#include "io/text_reader.h"
+#include "prior/png_file.h"
 
 namespace jgpm {
 namespace {
@@ -121,9 +120,7 @@ void PlotLatentSpace(const GaitModel& model, const std::filesystem::path& png,
   Title(image, "lines join each gait's poses in cycle order", {legend.x, legend.y + 22 * set.NumLayers() + 10}, 0.45);
   Title(image, "slices: points within 15% of the slice", {legend.x, legend.y + 22 * set.NumLayers() + 32}, 0.45);
 
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) ThrowInputError(png.string(), "PNG encoding failed");
-  WriteFileAtomic(png, std::string(bytes.begin(), bytes.end()));
+  WritePngFile(png, image);
 }
 
 }  // namespace jgpm

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/amc.h"
@@ -13,6 +12,7 @@
 #include "io/gait_pose.h"
 #include "io/kinematics.h"
 #include "io/text_reader.h"
+#include "prior/png_file.h"
 
 namespace jgpm {
 namespace {
@@ -130,11 +130,12 @@ void PlotStickFigures(const GaitModel& model, const Motion& motion, const std::f
   const int cell = 150, height = 260;
   cv::Mat image(height + 30, cell * figures, CV_8UC3, cv::Scalar(255, 255, 255));
   // Side view: forward (+z) to the right, up (+y) up; one scale for all figures.
+  std::vector<int> frames;
   std::vector<Eigen::Matrix3Xd> poses;
   double top = 1;
   for (int f = 0; f < figures; ++f) {
-    const int t = figures == 1 ? 0 : f * (motion.NumFrames() - 1) / (figures - 1);
-    poses.push_back(kinematics.Compute(motion.Frame(t)));
+    frames.push_back(figures == 1 ? 0 : f * (motion.NumFrames() - 1) / (figures - 1));
+    poses.push_back(kinematics.Compute(motion.Frame(frames.back())));
     top = std::max(top, poses.back().row(1).maxCoeff());
   }
   const double pixels_per_mm = (height - 20) / top;
@@ -154,13 +155,10 @@ void PlotStickFigures(const GaitModel& model, const Motion& motion, const std::f
                                                                                               : cv::Scalar(30, 30, 30);
       cv::line(image, to_image(skeleton.bones[b].parent), to_image(static_cast<int>(b)), colour, 2, cv::LINE_AA);
     }
-    const int t = figures == 1 ? 0 : f * (motion.NumFrames() - 1) / (figures - 1);
-    cv::putText(image, std::to_string(t), {f * cell + 5, height + 22}, cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0}, 1,
+    cv::putText(image, std::to_string(frames[f]), {f * cell + 5, height + 22}, cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0}, 1,
                 cv::LINE_AA);
   }
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) ThrowInputError(png.string(), "PNG encoding failed");
-  WriteFileAtomic(png, std::string(bytes.begin(), bytes.end()));
+  WritePngFile(png, image);
 }
 
 }  // namespace jgpm

@@ -89,14 +89,8 @@ std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
   } else {
     data.params.x = scores / std::sqrt(scores.squaredNorm() / (3.0 * scores.rows()));
   }
-  // Comma initialisers, not Vector3d temporaries: GCC 12 with AVX-512 warns (falsely) that
-  // those read out of bounds.
-  data.params.log_beta.resize(3);
-  data.params.log_beta << 0, 0, std::log(100.0);
-  if (spec.terms.dynamics) {
-    data.params.log_alpha.resize(4);
-    data.params.log_alpha << 0, 0, std::log(0.1), std::log(1e4);
-  }
+  data.params.log_beta = Eigen::Vector3d(0, 0, std::log(100.0));
+  if (spec.terms.dynamics) data.params.log_alpha = Eigen::Vector4d(0, 0, std::log(0.1), std::log(1e4));
   if (spec.terms.channel_scales) data.params.log_w = Eigen::VectorXd::Zero(set.NumChannels());
 
   const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);

@@ -6,11 +6,10 @@
 #include <map>
 #include <set>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
-#include "io/text_reader.h"
+#include "prior/png_file.h"
 
 namespace jgpm {
 namespace {
@@ -75,12 +74,6 @@ void DrawPanel(cv::Mat& image, const cv::Rect& area, const Panel& panel, double 
   }
 }
 
-void WritePng(const cv::Mat& image, const std::filesystem::path& path) {
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) ThrowInputError(path.string(), "PNG encoding failed");
-  WriteFileAtomic(path, std::string(bytes.begin(), bytes.end()));
-}
-
 // A chart of `panels` side by side with a legend of the models underneath.
 void WriteChart(const std::vector<Panel>& panels, const std::vector<std::string>& models, const std::string& title,
                 bool whiskers, const std::filesystem::path& path) {
@@ -109,7 +102,7 @@ void WriteChart(const std::vector<Panel>& panels, const std::vector<std::string>
     cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(static_cast<int>(m)), cv::FILLED);
     Text(image, models[m], {at.x + 20, at.y}, 0.45);
   }
-  WritePng(image, path);
+  WritePngFile(path, image);
 }
 
 }  // namespace

@@ -130,8 +130,7 @@ TEST(Objective, FixedInverseWidthHasZeroGradient) {
   const GpObjective objective(y, {}, nullptr, ObjectiveTerms{});
   GpParameters p;
   p.x = Eigen::MatrixXd::Random(5, 3);
-  p.log_beta.resize(3);
-  p.log_beta << 0.2, 0.0, 1.0;  // not a Vector3d temporary: GCC 12 + AVX-512 false warning
+  p.log_beta = Eigen::Vector3d(0.2, 0.0, 1.0);
   GpParameters gradient;
   ASSERT_TRUE(objective.Evaluate(p, &gradient).ok);
   EXPECT_EQ(gradient.log_beta[1], 0.0);

@@ -89,20 +89,18 @@ void RunEval(const EvalArguments& a) {
 
   if (!a.json.empty()) {
     nlohmann::json j;
-    j["split"] = a.trials;
-    nlohmann::json models_json = nlohmann::json::array();
-    for (size_t m = 0; m < suite.size(); ++m) {
-      nlohmann::json results = nlohmann::json::array();
-      for (const ValidationResult& r : suite[m].results) results.push_back(ValidationResultJson(r));
-      models_json.push_back({{"model", a.models[m]}, {"results", results}});
-    }
     if (suite.size() == 1 && suite[0].results.size() == 1) {
       j = ValidationResultJson(suite[0].results[0]);  // one case: its fields at the top
       j["model"] = a.models[0];
-      j["split"] = a.trials;
     } else {
-      j["models"] = models_json;
+      j["models"] = nlohmann::json::array();
+      for (size_t m = 0; m < suite.size(); ++m) {
+        nlohmann::json results = nlohmann::json::array();
+        for (const ValidationResult& r : suite[m].results) results.push_back(ValidationResultJson(r));
+        j["models"].push_back({{"model", a.models[m]}, {"results", results}});
+      }
     }
+    j["split"] = a.trials;
     WriteFileAtomic(a.json, FormatJson(j));
     std::printf("wrote %s\n", a.json.c_str());
   }
