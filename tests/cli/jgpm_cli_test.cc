@@ -28,7 +28,7 @@ Result Jgpm(const std::string& arguments) {
 int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(JgpmCli, HelpOnEverySubcommand) {
-  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent", "eval", "synth"}) {
+  for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent", "eval", "synth", "render"}) {
     const Result r = Jgpm(std::string(command) + " --help");
     EXPECT_EQ(r.status, 0) << command << r.err;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << command;

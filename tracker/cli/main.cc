@@ -7,6 +7,7 @@
 #include "io/error.h"
 #include "tracker/cli/data_commands.h"
 #include "tracker/cli/prior_commands.h"
+#include "tracker/cli/render_commands.h"
 #include "tracker/cli/validation_commands.h"
 
 int main(int argc, char** argv) {
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   jgpm::cli::AddDataCommands(app);
   jgpm::cli::AddPriorCommands(app);
   jgpm::cli::AddValidationCommands(app);
+  jgpm::cli::AddRenderCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here
   } catch (const CLI::Success& e) {

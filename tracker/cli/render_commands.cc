@@ -1,0 +1,113 @@
+#include "tracker/cli/render_commands.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include <unistd.h>
+
+#include "calibration/camera.h"
+#include "io/amc.h"
+#include "io/asf.h"
+#include "io/error.h"
+#include "io/motion_file.h"
+#include "tracker/synthetic_clip.h"
+
+namespace jgpm::cli {
+namespace {
+
+struct RenderArguments {
+  std::string asf;
+  std::string amc;
+  std::vector<std::string> cameras;
+  std::string out;
+  double amc_fps = 120;
+  ClipOptions clip;
+};
+
+void RunRender(const RenderArguments& a) {
+  MotionFileOptions files;
+  if (!a.asf.empty()) files.asf = a.asf;
+  const std::filesystem::path asf = SkeletonForAmc(a.amc, files);
+  std::string why;
+  if (!a.clip.Check(&why)) ThrowInputError("jgpm render", why);
+  std::vector<Camera> cameras;
+  for (const std::string& path : a.cameras) {
+    const CameraFile file = ReadCameraYaml(path);
+    if (!file.has_extrinsics)
+      ThrowInputError(path, "has no cam_from_world_rotation / cam_from_world_translation_mm: place "
+                            "the camera first (jgpm calibrate --floor-image or --pose)");
+    cameras.push_back(file.camera);
+  }
+  const Skeleton skeleton = ReadAsf(asf);
+  Motion motion = ReadAmc(a.amc, skeleton);
+  motion.frames_per_second = a.amc_fps;
+  const auto start = std::chrono::steady_clock::now();
+  const bool tty = isatty(fileno(stderr));
+  int last_percent = -1;
+  auto progress = [&](int done, int total) {
+    const int percent = 100 * done / total;
+    if (percent / 10 == last_percent / 10 && done != total) return;
+    last_percent = percent;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "render %3d%%  %d/%d images  %.0f images/s  %.0f s left%s", percent, done,
+                 total, done / std::max(elapsed, 1e-9), elapsed / done * (total - done), tty ? "   \r" : "\n");
+    std::fflush(stderr);
+  };
+  const ClipSummary summary =
+      RenderClip(skeleton, motion, {asf.string(), a.amc}, cameras, a.clip, a.out, progress);
+  if (tty) std::fprintf(stderr, "\n");
+  std::printf("rendered %s -> %s\n", summary.BriefReport().c_str(), a.out.c_str());
+  for (const Camera& c : summary.cameras) {
+    const Eigen::Vector3d at = c.CentreInWorld();
+    std::printf("  %s: f %.1f px (%.0f deg across), at (%.0f, %.0f, %.0f) mm\n", c.name.c_str(), c.fx,
+                2 * std::atan(c.width / (2 * c.fx)) * 180 / M_PI, at.x(), at.y(), at.z());
+  }
+}
+
+}  // namespace
+
+void AddRenderCommands(CLI::App& app) {
+  auto a = std::make_shared<RenderArguments>();
+  CLI::App* render = app.add_subcommand(
+      "render", "render a synthetic clip from a mocap trial: video, masks and ground truth per camera");
+  render->add_option("--amc", a->amc, "motion to render")->required()->check(CLI::ExistingFile);
+  render->add_option("--asf", a->asf, "its skeleton (default: NN.asf next to NN_TT.amc)")
+      ->check(CLI::ExistingFile);
+  CLI::Option* camera = render->add_option("--camera", a->cameras,
+      "camera YAML with extrinsics (repeat for several); default: a ring rig, see --cameras");
+  render->add_option("--out", a->out, "new (or empty) folder for the clip")->required();
+  render->add_option("--fps", a->clip.fps, "clip frame rate")->capture_default_str()->check(CLI::PositiveNumber);
+  render->add_option("--amc-fps", a->amc_fps, "frame rate of the AMC (AMC stores none; CMU: 120)")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  render->add_option("--max-frames", a->clip.max_frames, "render at most this many clip frames (0: all)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  render->add_option("--cameras", a->clip.rig.num_cameras, "default rig: cameras on the ring (1-4)")
+      ->capture_default_str()->check(CLI::Range(1, 4))->excludes(camera);
+  render->add_option("--width", a->clip.rig.width, "default rig: image width")
+      ->capture_default_str()->check(CLI::Range(32, 4096))->excludes(camera);
+  render->add_option("--height", a->clip.rig.height, "default rig: image height")
+      ->capture_default_str()->check(CLI::Range(32, 4096))->excludes(camera);
+  render->add_option("--ring-radius", a->clip.rig.ring_radius_mm, "default rig: distance from the walk's centre, mm")
+      ->capture_default_str()->check(CLI::Range(1000.0, 50000.0))->excludes(camera);
+  render->add_option("--sensor-noise", a->clip.degradations.sensor_noise, "video noise std, grey levels")
+      ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+  render->add_option("--mask-noise", a->clip.degradations.mask_noise_px,
+                     "observed masks: erode or dilate each frame by up to this many px")
+      ->capture_default_str()->check(CLI::Range(0.0, 20.0));
+  render->add_option("--holes", a->clip.degradations.holes, "observed masks: holes per frame")
+      ->capture_default_str()->check(CLI::Range(0, 100));
+  render->add_option("--clutter", a->clip.degradations.clutter_blobs, "moving background blobs")
+      ->capture_default_str()->check(CLI::Range(0, 50));
+  render->add_option("--lighting", a->clip.degradations.lighting_gain,
+                     "brightness at the end of the clip (ramps from 1 over the middle third)")
+      ->capture_default_str()->check(CLI::Range(0.1, 3.0));
+  render->add_option("--drop-rate", a->clip.degradations.drop_rate, "probability of dropping a frame")
+      ->capture_default_str()->check(CLI::Range(0.0, 0.99));
+  render->add_option("--width-scale", a->clip.body.width_scale, "body widths times this")
+      ->capture_default_str()->check(CLI::Range(0.25, 4.0));
+  render->add_option("--seed", a->clip.seed, "random seed of the degradations")->capture_default_str();
+  render->add_flag("!--no-contact-sheet", a->clip.contact_sheet, "skip contact_sheet.png");
+  render->callback([a] { RunRender(*a); });
+}
+
+}  // namespace jgpm::cli

@@ -1,0 +1,10 @@
+// `jgpm render`: synthetic silhouette clips from motion capture (tracker/synthetic_clip.h).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace jgpm::cli {
+
+void AddRenderCommands(CLI::App& app);
+
+}  // namespace jgpm::cli
