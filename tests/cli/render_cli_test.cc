@@ -1,6 +1,8 @@
 // `jgpm render` end to end: a short clip from a real trial, and every kind of bad request
 // refused on one line with nothing written.
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -77,6 +79,35 @@ TEST(RenderCli, BadRequestsGiveOneLineAndWriteNothing) {
     EXPECT_FALSE(fs::exists(out + ".partial")) << c.arguments;
   }
   EXPECT_TRUE(fs::exists(dir.path() / "full/x.txt"));
+}
+
+// Every clip of the tracking benchmark names a test-split trial (never training data) and
+// options `jgpm render` accepts.
+TEST(RenderCli, TrackingSuiteDefinitionRenders) {
+  const std::vector<TrialId> test_split = test::SplitTrials("test");
+  const std::vector<TrialId> train_split = test::SplitTrials("train");
+  auto contains = [](const std::vector<TrialId>& ids, const std::string& name) {
+    return std::any_of(ids.begin(), ids.end(), [&](const TrialId& id) { return id.name == name; });
+  };
+  std::ifstream suite(fs::path(JGPM_SOURCE_DIR) / "datasets_scripts/tracking_suite.txt");
+  ASSERT_TRUE(suite.good());
+  test::TempDir dir;
+  int clips = 0;
+  for (std::string line; std::getline(suite, line);) {
+    std::istringstream words(line);
+    std::string name, trial, options, word;
+    if (!(words >> name) || name[0] == '#') continue;
+    ASSERT_TRUE(static_cast<bool>(words >> trial)) << line;
+    while (words >> word) options += " " + word;
+    EXPECT_TRUE(contains(test_split, trial)) << trial;
+    EXPECT_FALSE(contains(train_split, trial)) << trial;
+    const fs::path amc = test::CmuRoot() / "subjects" / trial.substr(0, 2) / (trial + ".amc");
+    const Result r = Jgpm("render --amc " + amc.string() + " --out " + (dir.path() / name).string() +
+                          options + " --max-frames 2 --no-contact-sheet");
+    EXPECT_EQ(r.status, 0) << line << "\n" << r.err;
+    ++clips;
+  }
+  EXPECT_GE(clips, 4);
 }
 
 }  // namespace
