@@ -166,6 +166,35 @@ nlohmann::json CameraJson(const Camera& c) {
           {"cam_from_world_translation_mm", {c.cam_from_world_translation_mm.x(), c.cam_from_world_translation_mm.y(), c.cam_from_world_translation_mm.z()}}};
 }
 
+// The walker's silhouette with the skeleton over it, cropped about him and enlarged to
+// 160 x 240 (at 320 x 240 he is often under 100 px tall). The crop is an affine map of
+// the image, so the camera of the tile is the same camera with scaled intrinsics.
+cv::Mat SheetTile(const Skeleton& skeleton, const Camera& camera, const cv::Mat& mask,
+                  const Eigen::Matrix3Xd& joints) {
+  constexpr int kWidth = 160, kHeight = 240;
+  cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) box = cv::Rect(0, 0, mask.cols, mask.rows);
+  double h = std::max(40.0, 1.25 * box.height);
+  h = std::max(h, 1.25 * box.width * kHeight / kWidth);
+  const double scale = kHeight / h;
+  const double x0 = box.x + 0.5 * (box.width - 1) - 0.5 * (kWidth - 1) / scale;
+  const double y0 = box.y + 0.5 * (box.height - 1) - 0.5 * (kHeight - 1) / scale;
+  const cv::Matx23d to_tile(scale, 0, -x0 * scale, 0, scale, -y0 * scale);
+  cv::Mat grey, tile;
+  cv::warpAffine(mask / 255 * 170 + 40, grey, to_tile, cv::Size(kWidth, kHeight), cv::INTER_NEAREST,
+                 cv::BORDER_CONSTANT, cv::Scalar(25));
+  cv::cvtColor(grey, tile, cv::COLOR_GRAY2BGR);
+  Camera zoomed = camera;
+  zoomed.fx *= scale;
+  zoomed.fy *= scale;
+  zoomed.cx = (camera.cx - x0) * scale;
+  zoomed.cy = (camera.cy - y0) * scale;
+  zoomed.width = kWidth;
+  zoomed.height = kHeight;
+  DrawSkeleton(skeleton, zoomed, joints, &tile);
+  return tile;
+}
+
 }  // namespace
 
 ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
@@ -329,10 +358,7 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
       observed.setTo(255, clutter_mask);
       cv::imwrite((partial / "observed" / camera.name / FrameName(k)).string(), observed);
       if (options.contact_sheet && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
-        cv::Mat tile;
-        cv::cvtColor(mask / 255 * 170 + 40, tile, cv::COLOR_GRAY2BGR);
-        DrawSkeleton(skeleton, camera, joints[k], &tile);
-        sheet_tiles[c].push_back(tile);
+        sheet_tiles[c].push_back(SheetTile(skeleton, camera, mask, joints[k]));
       }
       if (progress) progress(++done, total);
     }
