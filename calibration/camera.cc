@@ -120,6 +120,16 @@ cv::Mat ReadMatrix(const cv::FileNode& node, const std::string& key, int rows, i
                         : "a " + std::to_string(rows) + "x" + std::to_string(cols) + " opencv-matrix";
   if (node.empty() || node.isNone())
     ThrowInputError(source, "missing key '" + key + "' (" + expected + ")");
+  // OpenCV allocates rows x cols before reading the data: check the header first, so a
+  // garbled size cannot ask for gigabytes.
+  constexpr int kMaxSide = 16;
+  if (!node.isMap()) ThrowInputError(source, "key '" + key + "' is not " + expected);
+  const cv::FileNode r = node["rows"], c = node["cols"], values = node["data"];
+  if (!r.isInt() || !c.isInt() || !values.isSeq() || static_cast<int>(r) < 1 ||
+      static_cast<int>(c) < 1 || static_cast<int>(r) > kMaxSide || static_cast<int>(c) > kMaxSide ||
+      values.size() != static_cast<size_t>(static_cast<int>(r) * static_cast<int>(c)))
+    ThrowInputError(source, "key '" + key + "' is not " + expected +
+                                " (rows, cols and as many data values)");
   cv::Mat m;
   try {
     node >> m;
@@ -150,6 +160,20 @@ int ReadPositiveInt(const cv::FileNode& node, const std::string& key, const std:
 }
 
 cv::FileStorage OpenYaml(const std::string& text, const std::string& source) {
+  // OpenCV 4.6's YAML reader ends the process (an exception thrown through a noexcept
+  // frame) on control bytes and on an indented line starting with ':' (an empty key);
+  // found by fuzzing. Neither belongs in a camera file, so refuse them first.
+  int line = 1;
+  bool line_start = true;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char ch = static_cast<unsigned char>(text[i]);
+    if (ch < 0x20 && ch != '\n' && ch != '\r' && ch != '\t')
+      ThrowInputError(source + ":" + std::to_string(line),
+                      "not a text file (control byte " + std::to_string(ch) + ")");
+    if (ch == ':' && line_start) ThrowInputError(source + ":" + std::to_string(line), "a key is empty");
+    if (ch == '\n') ++line;
+    line_start = ch == '\n' || (line_start && (ch == ' ' || ch == '\t'));
+  }
   cv::FileStorage fs;
   try {
     fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);

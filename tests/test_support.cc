@@ -98,4 +98,10 @@ int RunCommand(const std::string& command, std::string* out, std::string* err) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
 }
 
+CommandResult RunJgpm(const std::string& arguments) {
+  CommandResult r;
+  r.status = RunCommand(std::string(JGPM_BINARY) + " " + arguments, &r.out, &r.err);
+  return r;
+}
+
 }  // namespace jgpm::test

@@ -92,4 +92,12 @@ inline std::string CaseName(const testing::TestParamInfo<MalformedCase>& info) {
 // Runs a shell command; returns its exit status and fills stdout/stderr text.
 int RunCommand(const std::string& command, std::string* out, std::string* err);
 
+// The `jgpm` binary (JGPM_BINARY) run with `arguments`.
+struct CommandResult {
+  int status = 0;
+  std::string out;
+  std::string err;
+};
+CommandResult RunJgpm(const std::string& arguments);
+
 }  // namespace jgpm::test

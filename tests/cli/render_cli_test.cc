@@ -15,17 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-Result Jgpm(const std::string& arguments) {
-  Result r;
-  r.status = test::RunCommand(std::string(JGPM_BINARY) + " " + arguments, &r.out, &r.err);
-  return r;
-}
+using Result = test::CommandResult;
+Result Jgpm(const std::string& arguments) { return test::RunJgpm(arguments); }
 
 std::string Amc() { return (test::CmuRoot() / "subjects/35/35_12.amc").string(); }
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "io/error.h"
+#include "tracker/cli/calibration_commands.h"
 #include "tracker/cli/data_commands.h"
 #include "tracker/cli/prior_commands.h"
 #include "tracker/cli/render_commands.h"
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   jgpm::cli::AddPriorCommands(app);
   jgpm::cli::AddValidationCommands(app);
   jgpm::cli::AddRenderCommands(app);
+  jgpm::cli::AddCalibrationCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here
   } catch (const CLI::Success& e) {
