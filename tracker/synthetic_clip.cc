@@ -212,6 +212,10 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   CheckOutputFolder(out);
   for (size_t i = 0; i < cameras.size(); ++i) {
     if (!cameras[i].Check(&why)) ThrowInputError("camera " + cameras[i].name, why);
+    const std::string& name = cameras[i].name;  // it names the clip's files
+    if (name.empty() || name[0] == '.' ||
+        name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") != std::string::npos)
+      ThrowInputError("camera '" + name + "'", "a camera name may hold only letters, digits, '_', '-' and '.'");
     for (size_t k = 0; k < i; ++k)
       if (cameras[k].name == cameras[i].name)
         ThrowInputError("camera " + cameras[i].name, "two cameras share this name");
@@ -243,6 +247,15 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   fs::remove_all(partial, ec);
   fs::create_directories(partial, ec);
   if (ec) ThrowInputError(partial.string(), "cannot create the folder (" + ec.message() + ")");
+  // Whatever goes wrong from here on (disk full, a codec missing), no half clip is left.
+  struct RemoveUnlessDone {
+    fs::path path;
+    bool done = false;
+    ~RemoveUnlessDone() {
+      std::error_code ignored;
+      if (!done) fs::remove_all(path, ignored);
+    }
+  } cleanup{partial};
 
   // The room's centre: the walk's middle.
   Eigen::Vector3d room = Eigen::Vector3d::Zero();
@@ -418,6 +431,7 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   fs::remove(out, ec);  // an empty folder, checked above
   fs::rename(partial, out, ec);
   if (ec) ThrowInputError(out.string(), "cannot move the finished clip into place (" + ec.message() + ")");
+  cleanup.done = true;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

@@ -83,8 +83,8 @@ struct ClipSource {
 
 // Renders the clip into `out_dir`, which must not exist or be empty: it is written as
 // `<out_dir>.partial` and renamed when complete, so a failure leaves nothing half-made.
-// `cameras` empty: DefaultRig. `progress` (may be empty) gets (frames done, total).
-// InputError for bad options, cameras without extrinsics mismatching each other, an
+// `cameras` empty: DefaultRig. `progress` (may be empty) gets (images done, total).
+// InputError for bad options, an invalid camera, two cameras with one name, or an
 // unusable output folder.
 ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
                        std::vector<Camera> cameras, const ClipOptions& options,

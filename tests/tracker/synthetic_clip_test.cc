@@ -236,6 +236,15 @@ TEST(SyntheticClipTest, BadRequestsLeaveNothingBehind) {
   bad.fx = -1;
   test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {bad}, SmallClip(), (dir.path() / "x").string()); },
                          {"camera c", "focal"});
+  bad = LookAtCamera("sub/dir", 160, 120, 100, {0, 1500, -4000}, {0, 1000, 0});
+  test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {bad}, SmallClip(), (dir.path() / "x").string()); },
+                         {"sub/dir", "camera name"});
+  // A failure half way (here: the progress callback throws) leaves no half clip.
+  options = SmallClip();
+  options.max_frames = 10;
+  EXPECT_THROW(RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "x").string(),
+                          [](int done, int) { if (done == 5) throw std::runtime_error("stop"); }),
+               std::runtime_error);
   EXPECT_FALSE(fs::exists(dir.path() / "x"));
   EXPECT_FALSE(fs::exists(dir.path() / "x.partial"));
 }
