@@ -261,10 +261,12 @@ std::string FormatCameraYaml(const CameraFile& file) {
   cv::eigen2cv(c.CameraMatrix(), k);
   fs << "camera_matrix" << k;
   fs << "distortion_coefficients" << cv::Mat(c.distortion, true).reshape(1, 1);
-  cv::eigen2cv(c.cam_from_world_rotation, r);
-  fs << "cam_from_world_rotation" << r;
-  fs << "cam_from_world_translation_mm"
-     << cv::Mat(cv::Vec3d(c.cam_from_world_translation_mm.data()));
+  if (file.has_extrinsics) {
+    cv::eigen2cv(c.cam_from_world_rotation, r);
+    fs << "cam_from_world_rotation" << r;
+    fs << "cam_from_world_translation_mm"
+       << cv::Mat(cv::Vec3d(c.cam_from_world_translation_mm.data()));
+  }
   if (file.avg_reprojection_error_px >= 0)
     fs << "avg_reprojection_error" << file.avg_reprojection_error_px;
   return fs.releaseAndGetString();

@@ -66,7 +66,8 @@ struct CameraFile {
 CameraFile ReadCameraYaml(const std::string& path);
 // Parses YAML text; `source` names it in errors.
 CameraFile ParseCameraYaml(const std::string& text, const std::string& source);
-// Always writes the extrinsics.
+// Writes the extrinsics only when has_extrinsics: an unplaced camera stays recognisably
+// unplaced.
 std::string FormatCameraYaml(const CameraFile& file);
 // Written atomically (never a half-written file).
 void WriteCameraYaml(const CameraFile& file, const std::string& path);

@@ -252,10 +252,17 @@ TEST(CameraYaml, WriteThenReadFromDisk) {
   test::TempDir dir;
   CameraFile file;
   file.camera = PosedCamera(kDistortions[2]);
+  file.has_extrinsics = true;
   const fs::path path = dir.path() / "cam.yaml";
   WriteCameraYaml(file, path.string());
   const CameraFile back = ReadCameraYaml(path.string());
   ExpectSameCamera(back.camera, file.camera);
+  // An unplaced camera is written without a pose and reads back unplaced.
+  CameraFile unplaced = file;
+  unplaced.has_extrinsics = false;
+  const CameraFile back_unplaced = ParseCameraYaml(FormatCameraYaml(unplaced), "unplaced");
+  EXPECT_FALSE(back_unplaced.has_extrinsics);
+  EXPECT_EQ(back_unplaced.camera.cam_from_world_rotation, Eigen::Matrix3d::Identity());
   EXPECT_LT(back.avg_reprojection_error_px, 0);  // none written
   // The pose alone reads back from a camera file too.
   const CameraPose pose = ReadCameraPoseYaml(path.string());

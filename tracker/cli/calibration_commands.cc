@@ -153,7 +153,7 @@ void RunCalibrate(const CalibrateArguments& a) {
   file.camera = c;
   file.camera.name = a.name;
   file.avg_reprojection_error_px = summary.rms_px;
-  file.has_extrinsics = true;
+  file.has_extrinsics = !a.floor_image.empty() || pose.has_value();
   if (!a.floor_image.empty()) {
     const FloorPlacement placement = PlaceCameraFromFloorBoard(file.camera, a.floor_image, floor_options);
     file.camera = placement.camera;
@@ -166,7 +166,7 @@ void RunCalibrate(const CalibrateArguments& a) {
     file.camera.cam_from_world_translation_mm = pose->cam_from_world_translation_mm;
     PrintPlacement(file.camera, "by " + a.pose);
   } else {
-    std::printf("no --floor-image or --pose: the camera is at the world origin, looking along +z\n");
+    std::printf("not placed (no --floor-image or --pose): the YAML has no extrinsics yet\n");
   }
   WriteCameraYaml(file, a.out);
   std::printf("wrote %s\n", a.out.c_str());
