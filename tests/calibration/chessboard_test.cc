@@ -12,6 +12,7 @@
 
 #include "calibration/synthetic_chessboard.h"
 #include "io/error.h"
+#include "calibration/true_camera.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -23,20 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 double Rad(double deg) { return deg * kPi / 180; }
 double Deg(double rad) { return rad * 180 / kPi; }
 
-// The camera that renders every image: 640x480, barrel distortion, tangential terms, the
-// principal point a few pixels off-centre. At the world origin.
-Camera TrueCamera() {
-  Camera c;
-  c.name = "truth";
-  c.width = 640;
-  c.height = 480;
-  c.fx = 521.3;
-  c.fy = 519.6;
-  c.cx = 325.4;
-  c.cy = 236.8;
-  c.distortion = {-0.2, 0.05, 0.0008, -0.0006, 0.0};
-  return c;
-}
+using test::TrueCamera;
 
 // Its rays take about 2 s to work out: once for the whole program.
 const ChessboardRenderer& Renderer() {

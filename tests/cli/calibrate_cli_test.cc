@@ -10,6 +10,7 @@
 
 #include "calibration/camera.h"
 #include "calibration/synthetic_chessboard.h"
+#include "calibration/true_camera.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -24,17 +25,7 @@ Result Jgpm(const std::string& arguments) { return test::RunJgpm(arguments); }
 
 int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
-Camera TrueCamera() {
-  Camera c;
-  c.width = 640;
-  c.height = 480;
-  c.fx = 521.3;
-  c.fy = 519.6;
-  c.cx = 325.4;
-  c.cy = 236.8;
-  c.distortion = {-0.2, 0.05, 0.0008, -0.0006, 0.0};
-  return c;
-}
+using test::TrueCamera;
 
 // A folder of chessboard images (9x6 inner corners, 30 mm squares) seen by TrueCamera(),
 // a blank image, a text file that is not an image, and a floor image: a 7x4 board of
