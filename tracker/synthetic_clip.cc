@@ -149,6 +149,10 @@ void CheckOutputFolder(const fs::path& out) {
   }
 }
 
+void WriteImage(const fs::path& path, const cv::Mat& image) {
+  if (!cv::imwrite(path.string(), image)) ThrowInputError(path.string(), "cannot write the image");
+}
+
 std::string FrameName(int frame) {
   char name[32];
   std::snprintf(name, sizeof name, "%06d.png", frame);
@@ -195,6 +199,122 @@ cv::Mat SheetTile(const Skeleton& skeleton, const Camera& camera, const cv::Mat&
   return tile;
 }
 
+void CheckCameras(const std::vector<Camera>& cameras) {
+  if (cameras.size() > 8) ThrowInputError("cameras", "at most 8");
+  std::string why;
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const std::string& name = cameras[i].name;  // it names the clip's files
+    if (!cameras[i].Check(&why)) ThrowInputError("camera " + name, why);
+    if (name.empty() || name[0] == '.' ||
+        name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") != std::string::npos)
+      ThrowInputError("camera '" + name + "'", "a camera name may hold only letters, digits, '_', '-' and '.'");
+    for (size_t k = 0; k < i; ++k)
+      if (cameras[k].name == name) ThrowInputError("camera " + name, "two cameras share this name");
+  }
+}
+
+// The colour frame: the room, clutter blobs behind the walker (`clutter`: 1 + blob index,
+// 0 for none), the Lambert-shaded body.
+void ComposeFrame(const cv::Mat& background, const BodyImage& body, const std::vector<cv::Vec3f>& colours,
+                  const cv::Mat& clutter, const std::vector<Blob>& blobs, cv::Mat* colour) {
+  static const Eigen::Vector3d kLight = Eigen::Vector3d(0.4, 1.0, -0.3).normalized();
+  background.convertTo(*colour, CV_32FC3);
+  for (int v = 0; v < colour->rows; ++v) {
+    cv::Vec3f* out = colour->ptr<cv::Vec3f>(v);
+    const uint8_t* part = body.part.ptr<uint8_t>(v);
+    const uint8_t* blob = clutter.ptr<uint8_t>(v);
+    const cv::Vec3f* normal = body.normal.ptr<cv::Vec3f>(v);
+    for (int u = 0; u < colour->cols; ++u) {
+      if (part[u] != BodyImage::kNoPart) {
+        const double lambert = std::max(0.0, kLight.dot(Eigen::Vector3d(normal[u][0], normal[u][1], normal[u][2])));
+        out[u] = colours[part[u]] * static_cast<float>(0.35 + 0.65 * lambert);
+      } else if (blob[u]) {
+        const cv::Scalar& s = blobs[blob[u] - 1].colour;
+        out[u] = cv::Vec3f(s[0], s[1], s[2]);
+      }
+    }
+  }
+}
+
+// The mask as a segmentation would deliver it: eroded or dilated, holed, with the clutter.
+cv::Mat DegradeMask(const cv::Mat& mask, const cv::Mat& clutter, const ClipDegradations& deg,
+                    std::mt19937_64* rng) {
+  std::uniform_real_distribution<double> uniform(0, 1);
+  cv::Mat observed = mask.clone();
+  if (deg.mask_noise_px > 0) {
+    const int r = static_cast<int>(std::lround(deg.mask_noise_px * uniform(*rng)));
+    if (r > 0) {
+      const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1));
+      if (uniform(*rng) < 0.5) cv::erode(observed, observed, kernel);
+      else cv::dilate(observed, observed, kernel);
+    }
+  }
+  if (deg.holes > 0) {
+    std::vector<cv::Point> inside;
+    cv::findNonZero(mask, inside);
+    for (int h = 0; h < deg.holes && !inside.empty(); ++h) {
+      const cv::Point at = inside[static_cast<size_t>(uniform(*rng) * inside.size()) % inside.size()];
+      cv::circle(observed, at, 2 + static_cast<int>(4 * uniform(*rng)), cv::Scalar(0), -1);
+    }
+  }
+  observed.setTo(255, clutter);
+  return observed;
+}
+
+// The clip's frames: which source frame each shows, its joints, whether it was dropped.
+struct Sampling {
+  std::vector<int> source_frame;
+  std::vector<Eigen::Matrix3Xd> joints;
+  std::vector<bool> dropped;
+  int size() const { return static_cast<int>(joints.size()); }
+};
+
+nlohmann::json GroundTruth(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
+                           const std::vector<Camera>& cameras, const ClipOptions& options,
+                           const BodyModel& body, const Sampling& sampling) {
+  const ClipDegradations& deg = options.degradations;
+  nlohmann::json truth;
+  truth["format"] = "jgpm synthetic clip";
+  truth["version"] = 1;
+  truth["source"] = {{"asf", source.asf}, {"amc", source.amc}, {"fps", motion.frames_per_second}};
+  truth["fps"] = options.fps;
+  truth["image_width"] = cameras[0].width;
+  truth["image_height"] = cameras[0].height;
+  truth["seed"] = options.seed;
+  truth["degradations"] = {{"sensor_noise", deg.sensor_noise}, {"mask_noise_px", deg.mask_noise_px},
+                           {"holes", deg.holes}, {"clutter_blobs", deg.clutter_blobs},
+                           {"lighting_gain", deg.lighting_gain}, {"drop_rate", deg.drop_rate}};
+  nlohmann::json parts = nlohmann::json::array();
+  for (const BodyPart& p : body.parts())
+    parts.push_back({{"name", p.name}, {"from", skeleton.bones[p.from_joint].name},
+                     {"to", skeleton.bones[p.to_joint].name}, {"radius_from_mm", p.radius_from_mm},
+                     {"radius_to_mm", p.radius_to_mm}});
+  truth["body_model"] = {{"width_scale", options.body.width_scale}, {"parts", parts}};
+  nlohmann::json joint_names = nlohmann::json::array();
+  for (const Bone& bone : skeleton.bones) joint_names.push_back(bone.name);
+  truth["joint_names"] = joint_names;
+  truth["joints_note"] = "joints_mm[j] is the end of bone j (the root: its position), world y up, mm";
+  nlohmann::json cams = nlohmann::json::array();
+  for (const Camera& c : cameras) cams.push_back(CameraJson(c));
+  truth["cameras"] = cams;
+  nlohmann::json frame_list = nlohmann::json::array();
+  int video_frame = 0;
+  for (int k = 0; k < sampling.size(); ++k) {
+    const Eigen::Matrix3Xd& joints = sampling.joints[k];
+    nlohmann::json j = nlohmann::json::array();
+    for (int b = 0; b < joints.cols(); ++b)  // to 0.01 mm
+      j.push_back({std::round(joints(0, b) * 100) / 100, std::round(joints(1, b) * 100) / 100,
+                   std::round(joints(2, b) * 100) / 100});
+    const bool dropped = sampling.dropped[k];
+    frame_list.push_back({{"frame", k}, {"time_s", k / options.fps}, {"source_frame", sampling.source_frame[k]},
+                          {"dropped", dropped},
+                          {"video_frame", dropped ? nlohmann::json(nullptr) : nlohmann::json(video_frame++)},
+                          {"joints_mm", j}});
+  }
+  truth["frames"] = frame_list;
+  return truth;
+}
+
 }  // namespace
 
 ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
@@ -210,37 +330,30 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   fs::path out = fs::path(out_dir).lexically_normal();
   if (!out.has_filename()) out = out.parent_path();  // "DIR/"
   CheckOutputFolder(out);
-  for (size_t i = 0; i < cameras.size(); ++i) {
-    if (!cameras[i].Check(&why)) ThrowInputError("camera " + cameras[i].name, why);
-    const std::string& name = cameras[i].name;  // it names the clip's files
-    if (name.empty() || name[0] == '.' ||
-        name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") != std::string::npos)
-      ThrowInputError("camera '" + name + "'", "a camera name may hold only letters, digits, '_', '-' and '.'");
-    for (size_t k = 0; k < i; ++k)
-      if (cameras[k].name == cameras[i].name)
-        ThrowInputError("camera " + cameras[i].name, "two cameras share this name");
-  }
-  if (cameras.size() > 8) ThrowInputError("cameras", "at most 8");
+  CheckCameras(cameras);
 
   // Clip frame k shows the source frame nearest to time k / fps.
   const double step = motion.frames_per_second / options.fps;
   int frames = static_cast<int>(std::floor((motion.NumFrames() - 1) / step + 1e-9)) + 1;
   if (options.max_frames > 0) frames = std::min(frames, options.max_frames);
   const Kinematics kinematics(skeleton);
-  std::vector<int> source_frame(frames);
-  std::vector<Eigen::Matrix3Xd> joints(frames);
+  Sampling sampling;
+  sampling.source_frame.resize(frames);
+  sampling.joints.resize(frames);
   for (int k = 0; k < frames; ++k) {
-    source_frame[k] = std::min(motion.NumFrames() - 1, static_cast<int>(std::lround(k * step)));
-    kinematics.Compute(motion.Frame(source_frame[k]), &joints[k]);
+    sampling.source_frame[k] = std::min(motion.NumFrames() - 1, static_cast<int>(std::lround(k * step)));
+    kinematics.Compute(motion.Frame(sampling.source_frame[k]), &sampling.joints[k]);
   }
+  const std::vector<Eigen::Matrix3Xd>& joints = sampling.joints;
   if (cameras.empty()) cameras = DefaultRig(joints, options.rig);
   const BodyModel body(skeleton, options.body, source.asf);
 
   std::mt19937_64 random(options.seed);
   const ClipDegradations& deg = options.degradations;
-  std::vector<bool> dropped(frames, false);
+  sampling.dropped.assign(frames, false);
   std::bernoulli_distribution drop(deg.drop_rate);
-  for (int k = 1; k < frames; ++k) dropped[k] = drop(random);
+  for (int k = 1; k < frames; ++k) sampling.dropped[k] = drop(random);
+  const std::vector<bool>& dropped = sampling.dropped;
 
   const fs::path partial = out.string() + ".partial";
   std::error_code ec;
@@ -277,7 +390,6 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   }
   std::vector<cv::Vec3f> colours;
   for (const BodyPart& part : body.parts()) colours.push_back(MaterialColour(part.material));
-  const Eigen::Vector3d light = Eigen::Vector3d(0.4, 1.0, -0.3).normalized();
   std::vector<Capsule> capsules;
   const int total = frames * static_cast<int>(cameras.size());
   int done = 0;
@@ -307,7 +419,7 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     }
     BodyImage image;
     cv::Mat colour(camera.height, camera.width, CV_32FC3), noise(camera.height, camera.width, CV_32FC3);
-    cv::Mat frame8, observed, clutter_mask(camera.height, camera.width, CV_8UC1);
+    cv::Mat frame8, clutter_mask(camera.height, camera.width, CV_8UC1);
     cv::RNG cv_rng(options.seed * 7919 + c);
     for (int k = 0; k < frames; ++k) {
       for (Blob& blob : blobs) {  // blobs move on through dropped frames
@@ -322,26 +434,11 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
       body.Place(joints[k], &capsules);
       caster.Render(capsules, &image);
       const cv::Mat mask = image.Mask();
-      // Colour: room, clutter behind the walker, shaded body, light, sensor noise.
-      background.convertTo(colour, CV_32FC3);
+      // Colour: room, clutter, shaded body, then the light and the sensor's noise.
       clutter_mask.setTo(0);
       for (const Blob& blob : blobs)
         cv::ellipse(clutter_mask, blob.at, blob.axes, blob.angle_deg, 0, 360, cv::Scalar(1 + (&blob - blobs.data())), -1);
-      for (int v = 0; v < camera.height; ++v) {
-        cv::Vec3f* out_row = colour.ptr<cv::Vec3f>(v);
-        const uint8_t* part = image.part.ptr<uint8_t>(v);
-        const uint8_t* blob = clutter_mask.ptr<uint8_t>(v);
-        const cv::Vec3f* normal = image.normal.ptr<cv::Vec3f>(v);
-        for (int u = 0; u < camera.width; ++u) {
-          if (part[u] != BodyImage::kNoPart) {
-            const double lambert = std::max(0.0, light.dot(Eigen::Vector3d(normal[u][0], normal[u][1], normal[u][2])));
-            out_row[u] = colours[part[u]] * static_cast<float>(0.35 + 0.65 * lambert);
-          } else if (blob[u]) {
-            const cv::Scalar& s = blobs[blob[u] - 1].colour;
-            out_row[u] = cv::Vec3f(s[0], s[1], s[2]);
-          }
-        }
-      }
+      ComposeFrame(background, image, colours, clutter_mask, blobs, &colour);
       colour *= Gain(frames > 1 ? static_cast<double>(k) / (frames - 1) : 0, deg.lighting_gain);
       if (deg.sensor_noise > 0) {
         cv_rng.fill(noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(deg.sensor_noise));
@@ -349,27 +446,8 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
       }
       colour.convertTo(frame8, CV_8UC3);
       video.write(frame8);
-      // Masks: exact, and as a segmentation would deliver them.
-      cv::imwrite((partial / "masks" / camera.name / FrameName(k)).string(), mask);
-      mask.copyTo(observed);
-      if (deg.mask_noise_px > 0) {
-        const int r = static_cast<int>(std::lround(deg.mask_noise_px * uniform(rng)));
-        if (r > 0) {
-          const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1));
-          if (uniform(rng) < 0.5) cv::erode(observed, observed, kernel);
-          else cv::dilate(observed, observed, kernel);
-        }
-      }
-      if (deg.holes > 0) {
-        std::vector<cv::Point> inside;
-        cv::findNonZero(mask, inside);
-        for (int h = 0; h < deg.holes && !inside.empty(); ++h) {
-          const cv::Point at = inside[static_cast<size_t>(uniform(rng) * inside.size()) % inside.size()];
-          cv::circle(observed, at, 2 + static_cast<int>(4 * uniform(rng)), cv::Scalar(0), -1);
-        }
-      }
-      observed.setTo(255, clutter_mask);
-      cv::imwrite((partial / "observed" / camera.name / FrameName(k)).string(), observed);
+      WriteImage(partial / "masks" / camera.name / FrameName(k), mask);
+      WriteImage(partial / "observed" / camera.name / FrameName(k), DegradeMask(mask, clutter_mask, deg, &rng));
       if (options.contact_sheet && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
         sheet_tiles[c].push_back(SheetTile(skeleton, camera, mask, joints[k]));
       }
@@ -385,48 +463,11 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
         tiles.push_back(sheet_tiles[c][i]);
         labels.push_back(cameras[c].name + " frame " + std::to_string(sheet_frames[i]));
       }
-    cv::imwrite((partial / "contact_sheet.png").string(), TileImages(tiles, labels, static_cast<int>(sheet_frames.size())));
+    WriteImage(partial / "contact_sheet.png", TileImages(tiles, labels, static_cast<int>(sheet_frames.size())));
   }
 
-  // Ground truth.
-  nlohmann::json truth;
-  truth["format"] = "jgpm synthetic clip";
-  truth["version"] = 1;
-  truth["source"] = {{"asf", source.asf}, {"amc", source.amc}, {"fps", motion.frames_per_second}};
-  truth["fps"] = options.fps;
-  truth["image_width"] = cameras[0].width;
-  truth["image_height"] = cameras[0].height;
-  truth["seed"] = options.seed;
-  truth["degradations"] = {{"sensor_noise", deg.sensor_noise}, {"mask_noise_px", deg.mask_noise_px},
-                           {"holes", deg.holes}, {"clutter_blobs", deg.clutter_blobs},
-                           {"lighting_gain", deg.lighting_gain}, {"drop_rate", deg.drop_rate}};
-  nlohmann::json parts = nlohmann::json::array();
-  for (const BodyPart& p : body.parts())
-    parts.push_back({{"name", p.name}, {"from", skeleton.bones[p.from_joint].name},
-                     {"to", skeleton.bones[p.to_joint].name}, {"radius_from_mm", p.radius_from_mm},
-                     {"radius_to_mm", p.radius_to_mm}});
-  truth["body_model"] = {{"width_scale", options.body.width_scale}, {"parts", parts}};
-  nlohmann::json joint_names = nlohmann::json::array();
-  for (const Bone& bone : skeleton.bones) joint_names.push_back(bone.name);
-  truth["joint_names"] = joint_names;
-  truth["joints_note"] = "joints_mm[j] is the end of bone j (the root: its position), world y up, mm";
-  nlohmann::json cams = nlohmann::json::array();
-  for (const Camera& c : cameras) cams.push_back(CameraJson(c));
-  truth["cameras"] = cams;
-  nlohmann::json frame_list = nlohmann::json::array();
-  int video_frame = 0;
-  for (int k = 0; k < frames; ++k) {
-    nlohmann::json j = nlohmann::json::array();
-    for (int b = 0; b < joints[k].cols(); ++b)
-      j.push_back({std::round(joints[k](0, b) * 100) / 100, std::round(joints[k](1, b) * 100) / 100,
-                   std::round(joints[k](2, b) * 100) / 100});
-    frame_list.push_back({{"frame", k}, {"time_s", k / options.fps}, {"source_frame", source_frame[k]},
-                          {"dropped", static_cast<bool>(dropped[k])},
-                          {"video_frame", dropped[k] ? nlohmann::json(nullptr) : nlohmann::json(video_frame++)},
-                          {"joints_mm", j}});
-  }
-  truth["frames"] = frame_list;
-  WriteFileAtomic(partial / "ground_truth.json", FormatJson(truth));
+  WriteFileAtomic(partial / "ground_truth.json",
+                  FormatJson(GroundTruth(skeleton, motion, source, cameras, options, body, sampling)));
 
   fs::remove(out, ec);  // an empty folder, checked above
   fs::rename(partial, out, ec);
