@@ -1,5 +1,7 @@
 #include "prior/model_kind.h"
 
+#include "io/enum_name.h"
+
 namespace jgpm {
 
 const std::vector<ModelKind>& AllModelKinds() {
@@ -24,13 +26,7 @@ std::string_view ModelKindName(ModelKind kind) {
 }
 
 bool ParseModelKind(std::string_view name, ModelKind* kind) {
-  for (ModelKind k : AllModelKinds()) {
-    if (ModelKindName(k) == name) {
-      *kind = k;
-      return true;
-    }
-  }
-  return false;
+  return ParseByName(name, AllModelKinds(), ModelKindName, kind);
 }
 
 std::string ModelKindList() {

@@ -8,6 +8,7 @@
 #include "io/amc.h"
 #include "io/bvh.h"
 #include "io/bvh_conversion.h"
+#include "io/enum_name.h"
 #include "io/error.h"
 #include "io/gait_pose.h"
 #include "io/kinematics.h"
@@ -32,13 +33,8 @@ std::string_view SynthesisPathName(SynthesisPath path) {
 }
 
 bool ParseSynthesisPath(std::string_view name, SynthesisPath* path) {
-  for (SynthesisPath p : {SynthesisPath::kLine, SynthesisPath::kOuterSpiral, SynthesisPath::kInnerSpiral}) {
-    if (SynthesisPathName(p) == name) {
-      *path = p;
-      return true;
-    }
-  }
-  return false;
+  return ParseByName(name, {SynthesisPath::kLine, SynthesisPath::kOuterSpiral, SynthesisPath::kInnerSpiral},
+                     SynthesisPathName, path);
 }
 
 bool SynthesisOptions::Check(std::string* why) const {

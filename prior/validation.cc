@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "io/asf.h"
+#include "io/enum_name.h"
 #include "io/error.h"
 #include "io/text_reader.h"
 #include "prior/training_set.h"
@@ -72,13 +73,8 @@ std::string_view TaskName(ValidationTask task) {
 }
 
 bool ParseTask(std::string_view name, ValidationTask* task) {
-  for (ValidationTask t : {ValidationTask::kInterpolation, ValidationTask::kReconstruction, ValidationTask::kFiltering}) {
-    if (TaskName(t) == name) {
-      *task = t;
-      return true;
-    }
-  }
-  return false;
+  return ParseByName(name, {ValidationTask::kInterpolation, ValidationTask::kReconstruction, ValidationTask::kFiltering},
+                     TaskName, task);
 }
 
 std::string_view MissingPartName(MissingPart part) {
@@ -92,13 +88,8 @@ std::string_view MissingPartName(MissingPart part) {
 }
 
 bool ParseMissingPart(std::string_view name, MissingPart* part) {
-  for (MissingPart p : {MissingPart::kNone, MissingPart::kLeftArm, MissingPart::kLeftLeg, MissingPart::kLeftSide}) {
-    if (MissingPartName(p) == name) {
-      *part = p;
-      return true;
-    }
-  }
-  return false;
+  return ParseByName(name, {MissingPart::kNone, MissingPart::kLeftArm, MissingPart::kLeftLeg, MissingPart::kLeftSide},
+                     MissingPartName, part);
 }
 
 std::vector<std::string_view> MissingJoints(MissingPart part) {
