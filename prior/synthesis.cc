@@ -38,13 +38,14 @@ bool ParseSynthesisPath(std::string_view name, SynthesisPath* path) {
 }
 
 bool SynthesisOptions::Check(std::string* why) const {
-  if (frames < 2) *why = "frames must be >= 2";
-  else if (!(frames_per_second > 0)) *why = "frames per second must be > 0";
-  else if (!std::isfinite(phase) || !std::isfinite(gait)) *why = "phase and gait must be finite";
-  else if (!(cycles > 0) || !std::isfinite(cycles)) *why = "cycles must be > 0";
-  else if (!std::isfinite(gait_span)) *why = "gait span must be finite";
-  else return true;
-  return false;
+  const char* problem = nullptr;
+  if (frames < 2) problem = "frames must be >= 2";
+  else if (!(frames_per_second > 0)) problem = "frames per second must be > 0";
+  else if (!std::isfinite(phase) || !std::isfinite(gait)) problem = "phase and gait must be finite";
+  else if (!(cycles > 0) || !std::isfinite(cycles)) problem = "cycles must be > 0";
+  else if (!std::isfinite(gait_span)) problem = "gait span must be finite";
+  if (problem && why) *why = problem;  // `why` may be null, as for every other Check
+  return problem == nullptr;
 }
 
 SynthesisResult Synthesise(const GaitModel& model, SynthesisPath path, const SynthesisOptions& o) {
