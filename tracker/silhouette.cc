@@ -11,21 +11,24 @@ namespace {
 constexpr int kShift = 4;  // fixed-point bits of the polygon coordinates (1/16 px)
 constexpr double kOne = 1 << kShift;
 constexpr double kNearMm = 100;
-constexpr double kMaxSagittaPx = 0.15;
+constexpr double kMaxSagittaPx = 0.15;  // chord-to-arc distance of the polygonal circles
 constexpr double kOutlinePx = 0.5;
-double kOffsetPx = getenv("OFF") ? atof(getenv("OFF")) : 0;  // chord-to-arc distance of the polygonal circles
 
-// Appends points of the arc of circle (centre, radius) from angle `start` turning by
-// `span` (radians, negative: clockwise in image coordinates), both ends included.
-void AppendArc(const Eigen::Vector2d& centre, double radius, double start, double span,
+// Appends points of the arc of circle (centre, radius) starting in unit direction `start`
+// and turning by `span` (radians, negative: clockwise in image coordinates), both ends
+// included. Consecutive points are rotations of each other, so an arc costs two sines
+// and cosines however many points it has (this runs for every part of every particle).
+void AppendArc(const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start, double span,
                std::vector<cv::Point>* points) {
   const double step =
       radius > kMaxSagittaPx ? 2 * std::acos(1 - kMaxSagittaPx / radius) : 3.14159;
   const int n = std::clamp(static_cast<int>(std::ceil(std::abs(span) / step)), 1, 32);
+  const double c = std::cos(span / n), s = std::sin(span / n);
+  Eigen::Vector2d direction = start;
   for (int i = 0; i <= n; ++i) {
-    const double a = start + span * i / n;
-    points->emplace_back(static_cast<int>(std::lround((centre.x() + radius * std::cos(a)) * kOne)),
-                         static_cast<int>(std::lround((centre.y() + radius * std::sin(a)) * kOne)));
+    const Eigen::Vector2d p = centre + radius * direction;
+    points->emplace_back(static_cast<int>(std::lround(p.x() * kOne)), static_cast<int>(std::lround(p.y() * kOne)));
+    direction = Eigen::Vector2d(c * direction.x() - s * direction.y(), s * direction.x() + c * direction.y());
   }
 }
 
@@ -55,16 +58,17 @@ cv::Rect SilhouetteRenderer::Render(const std::vector<Capsule>& capsules, cv::Ma
     const double length = d.norm();
     if (length <= std::abs(ra - rb) + 1e-9) {
       // One end's circle holds the other: the hull is that circle.
-      AppendArc(ra >= rb ? ca : cb, std::max(ra, rb), 0, -2 * M_PI, &polygon);
+      AppendArc(ra >= rb ? ca : cb, std::max(ra, rb), Eigen::Vector2d(1, 0), -2 * M_PI, &polygon);
       polygon.pop_back();
     } else {
-      // Outer tangents touch the circles at angles angle(u) +- (pi/2 - phi), with
-      // sin(phi) = (ra - rb) / |d|; walk clockwise: far side of b, then back side of a.
-      const double angle_u = std::atan2(d.y(), d.x());
-      const double phi = std::asin((ra - rb) / length);
-      const double half = M_PI / 2 - phi;
-      AppendArc(cb, rb, angle_u + half, -2 * half, &polygon);
-      AppendArc(ca, ra, angle_u - half, -(2 * M_PI - 2 * half), &polygon);
+      // Outer tangents touch the circles in directions +-n cos(phi) + u sin(phi) (u along
+      // the axis, n its normal, sin(phi) = (ra - rb) / |d|), i.e. u turned by
+      // +-(pi/2 - phi); walk clockwise: far side of b, then back side of a.
+      const Eigen::Vector2d u = d / length, n(-u.y(), u.x());
+      const double sin_phi = (ra - rb) / length, cos_phi = std::sqrt(1 - sin_phi * sin_phi);
+      const double half = M_PI / 2 - std::asin(sin_phi);
+      AppendArc(cb, rb, n * cos_phi + u * sin_phi, -2 * half, &polygon);
+      AppendArc(ca, ra, -n * cos_phi + u * sin_phi, -(2 * M_PI - 2 * half), &polygon);
     }
     cv::fillConvexPoly(*mask, polygon, cv::Scalar(255), cv::LINE_8, kShift);
     const double r = std::max(ra, rb) + kOutlinePx;
