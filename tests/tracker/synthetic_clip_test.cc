@@ -48,15 +48,12 @@ ClipOptions SmallClip() {
   return options;
 }
 
-int CountVideoFrames(const fs::path& path, cv::Size* size) {
+// Every frame of a video.
+std::vector<cv::Mat> ReadVideo(const fs::path& path) {
   cv::VideoCapture video(path.string());
-  cv::Mat frame;
-  int n = 0;
-  while (video.read(frame)) {
-    *size = frame.size();
-    ++n;
-  }
-  return n;
+  std::vector<cv::Mat> frames;
+  for (cv::Mat frame; video.read(frame);) frames.push_back(frame.clone());
+  return frames;
 }
 
 TEST(SyntheticClipTest, GroundTruthCamerasAndMasksAgree) {
@@ -90,9 +87,9 @@ TEST(SyntheticClipTest, GroundTruthCamerasAndMasksAgree) {
     const Camera camera = ReadCameraYaml((clip / ("cam" + std::to_string(c) + ".yaml")).string()).camera;
     EXPECT_NEAR(camera.fx, truth["cameras"][c]["fx"].get<double>(), 1e-9);
     EXPECT_TRUE(camera.cam_from_world_rotation.isApprox(summary.cameras[c].cam_from_world_rotation, 1e-12));
-    cv::Size size;
-    EXPECT_EQ(CountVideoFrames(clip / (camera.name + ".avi"), &size), 83);
-    EXPECT_EQ(size, cv::Size(160, 120));
+    const std::vector<cv::Mat> video = ReadVideo(clip / (camera.name + ".avi"));
+    ASSERT_EQ(video.size(), 83u);
+    EXPECT_EQ(video.back().size(), cv::Size(160, 120));
     for (int k = 0; k < 83; k += 10) {
       const cv::Mat mask = cv::imread((clip / "masks" / camera.name / cv::format("%06d.png", k)).string(), cv::IMREAD_UNCHANGED);
       ASSERT_EQ(mask.size(), cv::Size(160, 120));
@@ -124,9 +121,10 @@ TEST(SyntheticClipTest, VideoShowsTheWalkerOverAStaticRoom) {
   options.rig.num_cameras = 1;
   options.max_frames = 20;
   RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "clip").string());
-  cv::VideoCapture video((dir.path() / "clip/cam0.avi").string());
-  cv::Mat first, last, frame;
-  for (int k = 0; video.read(frame); ++k) (k == 0 ? first : last) = frame.clone();
+  const std::vector<cv::Mat> video = ReadVideo(dir.path() / "clip/cam0.avi");
+  ASSERT_EQ(video.size(), 20u);
+  const cv::Mat& first = video.front();
+  const cv::Mat& last = video.back();
   const cv::Mat mask0 = cv::imread((dir.path() / "clip/masks/cam0/000000.png").string(), cv::IMREAD_GRAYSCALE);
   const cv::Mat mask19 = cv::imread((dir.path() / "clip/masks/cam0/000019.png").string(), cv::IMREAD_GRAYSCALE);
   cv::Mat diff;
@@ -182,13 +180,10 @@ TEST(SyntheticClipTest, DegradationsDoWhatTheySay) {
   EXPECT_EQ(kept, 40 - summary.dropped);
   EXPECT_GT(differing, kept / 2);
   EXPECT_GT(clutter_outside, kept / 2);
-  cv::Size size;
-  EXPECT_EQ(CountVideoFrames(clip / "cam0.avi", &size), kept);
+  const std::vector<cv::Mat> video = ReadVideo(clip / "cam0.avi");
+  ASSERT_EQ(static_cast<int>(video.size()), kept);
   // Lighting: the last frame is half as bright as the first outside the walker and blobs.
-  cv::VideoCapture video((clip / "cam0.avi").string());
-  cv::Mat first, last, frame;
-  for (int k = 0; video.read(frame); ++k) (k == 0 ? first : last) = frame.clone();
-  const double ratio = cv::mean(last)[1] / cv::mean(first)[1];
+  const double ratio = cv::mean(video.back())[1] / cv::mean(video.front())[1];
   std::printf("brightness last/first frame: %.3f (gain 0.5)\n", ratio);
   EXPECT_NEAR(ratio, 0.5, 0.06);
 }
