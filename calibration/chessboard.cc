@@ -88,14 +88,15 @@ cv::Mat DistortionCv(const Camera& camera) { return cv::Mat(camera.distortion, t
 }  // namespace
 
 bool ChessboardOptions::Check(std::string* why) const {
-  if (cols < 3 || rows < 3) *why = "the board needs at least 3x3 inner corners (COLSxROWS counts inner corners)";
-  else if (!(square_mm > 0) || !std::isfinite(square_mm)) *why = "the square size must be > 0 mm";
+  const char* problem = nullptr;
+  if (cols < 3 || rows < 3) problem = "the board needs at least 3x3 inner corners (COLSxROWS counts inner corners)";
+  else if (!(square_mm > 0) || !std::isfinite(square_mm)) problem = "the square size must be > 0 mm";
   else if (distortion_coefficients != 4 && distortion_coefficients != 5 && distortion_coefficients != 8)
-    *why = "distortion_coefficients must be 4, 5 or 8";
+    problem = "distortion_coefficients must be 4, 5 or 8";
   else if (subpixel_half_window_px < 1 || subpixel_half_window_px > 50)
-    *why = "subpixel_half_window_px must be in [1, 50]";
-  else return true;
-  return false;
+    problem = "subpixel_half_window_px must be in [1, 50]";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 bool FindChessboardCorners(const cv::Mat& image, const ChessboardOptions& options,

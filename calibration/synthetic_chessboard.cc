@@ -11,14 +11,15 @@
 namespace jgpm {
 
 bool SyntheticChessboardOptions::Check(std::string* why) const {
+  const char* problem = nullptr;
   auto grey = [](double g) { return std::isfinite(g) && g >= 0 && g <= 255; };
-  if (cols < 3 || rows < 3) *why = "the board needs at least 3x3 inner corners";
-  else if (!(square_mm > 0) || !std::isfinite(square_mm)) *why = "square_mm must be > 0";
-  else if (!grey(black) || !grey(white) || !grey(background)) *why = "grey levels must be in [0, 255]";
-  else if (!(blur_sigma_px >= 0) || blur_sigma_px > 20) *why = "blur_sigma_px must be in [0, 20]";
-  else if (!(noise_stddev >= 0) || !std::isfinite(noise_stddev)) *why = "noise_stddev must be >= 0";
-  else return true;
-  return false;
+  if (cols < 3 || rows < 3) problem = "the board needs at least 3x3 inner corners";
+  else if (!(square_mm > 0) || !std::isfinite(square_mm)) problem = "square_mm must be > 0";
+  else if (!grey(black) || !grey(white) || !grey(background)) problem = "grey levels must be in [0, 255]";
+  else if (!(blur_sigma_px >= 0) || blur_sigma_px > 20) problem = "blur_sigma_px must be in [0, 20]";
+  else if (!(noise_stddev >= 0) || !std::isfinite(noise_stddev)) problem = "noise_stddev must be >= 0";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 Eigen::Vector3d BoardPose::CornerInWorld(double i, double j, double square_mm) const {
