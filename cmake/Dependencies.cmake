@@ -15,9 +15,6 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(LAPACKE REQUIRED IMPORTED_TARGET lapacke)
 pkg_check_modules(OPENBLAS REQUIRED IMPORTED_TARGET openblas)
 
-if(JGPM_WITH_V4L2)
-  pkg_check_modules(LIBV4L2 REQUIRED IMPORTED_TARGET libv4l2)
-endif()
 
 if(JGPM_BUILD_TESTS)
   find_package(GTest REQUIRED)

@@ -1,6 +1,7 @@
 #include "io/amc.h"
 
 #include <charconv>
+#include <cstdint>
 #include <map>
 
 #include "io/error.h"
@@ -10,12 +11,16 @@ namespace jgpm {
 namespace {
 
 // A line holding only an integer starts a frame.
-bool IsFrameNumber(const std::vector<std::string_view>& tokens, int* number) {
+// A line holding one integer. Read as 64 bits so that numbers past an int are seen as
+// frame numbers (and refused), and the next frame's number never overflows.
+bool IsFrameNumber(const std::vector<std::string_view>& tokens, int64_t* number) {
   if (tokens.size() != 1) return false;
   const std::string_view t = tokens[0];
   const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), *number);
   return ec == std::errc() && ptr == t.data() + t.size();
 }
+
+constexpr int64_t kMaxFrameNumber = 1000000000;  // 115 days at 100 fps
 
 std::string DofList(const Bone& bone) {
   std::string list;
@@ -39,7 +44,7 @@ Motion ParseAmc(std::string_view text, const std::string& source, const Skeleton
 
   // Header: comments and the two keywords, up to the first frame number.
   bool fully_specified = false, degrees = false;
-  int first_number = 0;
+  int64_t first_number = 0;
   while (true) {
     if (!in.Next()) {
       in.Fail(fully_specified && degrees ? "expected frames after the header, found none"
@@ -59,6 +64,10 @@ Motion ParseAmc(std::string_view text, const std::string& source, const Skeleton
     } else if (tokens[0] == ":RADIANS") {
       in.Fail("expected :DEGREES (AMC angles in radians are not supported)");
     } else if (IsFrameNumber(tokens, &first_number)) {
+      if (first_number > kMaxFrameNumber || first_number < -kMaxFrameNumber) {
+        in.Fail("frame number " + std::to_string(first_number) + " is out of range (at most " +
+                std::to_string(kMaxFrameNumber) + ")");
+      }
       if (!fully_specified) in.Fail("expected :FULLY-SPECIFIED before the first frame");
       if (!degrees) in.Fail("expected :DEGREES before the first frame");
       break;
@@ -67,11 +76,11 @@ Motion ParseAmc(std::string_view text, const std::string& source, const Skeleton
     }
   }
 
-  motion.first_frame_number = first_number;
+  motion.first_frame_number = static_cast<int>(first_number);
   std::vector<double> values;
   values.reserve(static_cast<size_t>(channels) * 512);
   std::vector<int> seen_in_frame(skeleton.bones.size(), 0);
-  int frame_number = first_number;
+  int64_t frame_number = first_number;
   int frame_line = in.line_number();
   int frames = 0;
 
@@ -99,10 +108,10 @@ Motion ParseAmc(std::string_view text, const std::string& source, const Skeleton
   while (in.Next()) {
     const auto tokens = SplitBlanks(in.line());
     if (tokens.empty()) continue;
-    int number = 0;
+    int64_t number = 0;
     if (IsFrameNumber(tokens, &number)) {
       finish_frame(false);
-      if (number != frame_number + 1) {
+      if (number != frame_number + 1 || number > kMaxFrameNumber) {
         in.Fail("expected frame number " + std::to_string(frame_number + 1) + ", found " +
                 std::to_string(number));
       }

@@ -201,9 +201,10 @@ Bvh ParseBvh(std::string_view text, const std::string& source, double mm_per_uni
   if (bvh.frame_time <= 0) in.Fail("expected a frame time > 0 seconds");
 
   const int channels = bvh.NumChannels();
-  // Grow row by row: the declared count is untrusted until the lines are there.
+  // The declared count is untrusted until the lines are there: reserve no more than the
+  // text can hold (a value takes at least two bytes, digit and separator), then grow.
   std::vector<double> values;
-  values.reserve(static_cast<size_t>(std::min(frames, 100000)) * channels);
+  values.reserve(std::min(static_cast<size_t>(frames) * static_cast<size_t>(channels), text.size() / 2));
   for (int f = 0; f < frames; ++f) {
     if (!NextNonBlank(in)) {
       in.Fail("file ends after " + std::to_string(f) + " of " + std::to_string(frames) +

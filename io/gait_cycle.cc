@@ -43,23 +43,28 @@ double Autocorrelation(const Eigen::VectorXd& s, int lag) {
   return denominator > 0 ? a.dot(b) / denominator : 0.0;
 }
 
+// A skeleton may lack the channel (GaitPoseLayout takes any dofs), so this is bad input.
 int ChannelIndex(const GaitPoseLayout& layout, const std::string& name) {
   const auto& names = layout.channel_names();
   const auto it = std::find(names.begin(), names.end(), name);
-  JGPM_CHECK(it != names.end());
+  if (it == names.end()) {
+    ThrowInputError(layout.source(), "the skeleton has no " + name + " dof, which finding gait cycles needs "
+                                     "(the stride is read from lfemur.rx - rfemur.rx)");
+  }
   return static_cast<int>(it - names.begin());
 }
 
 }  // namespace
 
 bool GaitCycleOptions::Check(std::string* why) const {
-  if (poses_per_cycle < 2) *why = "poses_per_cycle must be at least 2";
-  else if (!(min_cycle_s > 0 && max_cycle_s > min_cycle_s)) *why = "need 0 < min_cycle_s < max_cycle_s";
-  else if (!(min_periodicity >= -1 && min_periodicity <= 1)) *why = "min_periodicity must be in [-1, 1]";
-  else if (!(min_thigh_swing_deg >= 0)) *why = "min_thigh_swing_deg must be >= 0";
-  else if (!(max_closure_deg > 0)) *why = "max_closure_deg must be > 0";
-  else return true;
-  return false;
+  const char* problem = nullptr;
+  if (poses_per_cycle < 2) problem = "poses_per_cycle must be at least 2";
+  else if (!(min_cycle_s > 0 && max_cycle_s > min_cycle_s)) problem = "need 0 < min_cycle_s < max_cycle_s";
+  else if (!(min_periodicity >= -1 && min_periodicity <= 1)) problem = "min_periodicity must be in [-1, 1]";
+  else if (!(min_thigh_swing_deg >= 0)) problem = "min_thigh_swing_deg must be >= 0";
+  else if (!(max_closure_deg > 0)) problem = "max_closure_deg must be > 0";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 GaitCycle ExtractGaitCycle(const GaitPoseLayout& layout, const Motion& motion,
@@ -67,6 +72,7 @@ GaitCycle ExtractGaitCycle(const GaitPoseLayout& layout, const Motion& motion,
   std::string why;
   JGPM_CHECK(options.Check(&why));
   GaitCycle cycle;
+  const int left_thigh = ChannelIndex(layout, "lfemur.rx"), right_thigh = ChannelIndex(layout, "rfemur.rx");
   const int n = motion.NumFrames();
   const double fps = motion.frames_per_second;
   const int min_lag = std::max(2, static_cast<int>(std::lround(options.min_cycle_s * fps)));
@@ -80,8 +86,7 @@ GaitCycle ExtractGaitCycle(const GaitPoseLayout& layout, const Motion& motion,
   }
 
   const Eigen::MatrixXd all = PoseChannels(layout, motion, 0, n - 1, 0.0);
-  const Eigen::VectorXd s = all.col(ChannelIndex(layout, "lfemur.rx")) -
-                            all.col(ChannelIndex(layout, "rfemur.rx"));
+  const Eigen::VectorXd s = all.col(left_thigh) - all.col(right_thigh);
   cycle.thigh_swing_deg = s.maxCoeff() - s.minCoeff();
   if (cycle.thigh_swing_deg < options.min_thigh_swing_deg) {
     cycle.problem = "thighs barely swing (" + Format(cycle.thigh_swing_deg, 1) + " deg < " +

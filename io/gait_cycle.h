@@ -57,6 +57,7 @@ struct GaitCycle {
 };
 
 // Never throws for motion that is not a clean walk: `clean` and `problem` say so.
+// InputError naming the skeleton when it has no lfemur.rx or rfemur.rx dof.
 GaitCycle ExtractGaitCycle(const GaitPoseLayout& layout, const Motion& motion,
                            const GaitCycleOptions& options = {});
 

@@ -22,7 +22,7 @@ const std::vector<GaitJoint>& GaitJoints() {
 }
 
 GaitPoseLayout::GaitPoseLayout(const Skeleton& skeleton, const std::string& source)
-    : num_skeleton_channels_(skeleton.NumChannels()) {
+    : source_(source), num_skeleton_channels_(skeleton.NumChannels()) {
   const std::vector<int> offsets = skeleton.ChannelOffsets();
   const std::vector<GaitJoint>& joints = GaitJoints();
   for (size_t j = 0; j < joints.size(); ++j) {

@@ -34,6 +34,8 @@ class GaitPoseLayout {
   GaitPoseLayout(const Skeleton& skeleton, const std::string& source);
 
   int NumChannels() const { return static_cast<int>(skeleton_channel_.size()); }
+  // The skeleton's file (for errors about it).
+  const std::string& source() const { return source_; }
   // "lfemur.rx"-style names.
   const std::vector<std::string>& channel_names() const { return names_; }
   // Index into the skeleton's frame vector of each channel.
@@ -54,6 +56,7 @@ class GaitPoseLayout {
   void ToFrame(const double* pose, double* frame) const;
 
  private:
+  std::string source_;
   std::vector<std::string> names_;
   std::vector<int> skeleton_channel_;
   std::vector<int> channel_joint_;

@@ -45,13 +45,16 @@ std::string FormatJson(const nlohmann::json& value) {
   return out + "\n";
 }
 
-nlohmann::json ReadJsonFile(const std::filesystem::path& path, const std::string& what) {
-  const std::string text = ReadTextFile(path, what);
+nlohmann::json ParseJson(const std::string& text, const std::string& source) {
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    ThrowInputError(path.string(), std::string("invalid JSON: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {  // parse_error, and out_of_range for 1e999
+    ThrowInputError(source, std::string("invalid JSON: ") + e.what());
   }
+}
+
+nlohmann::json ReadJsonFile(const std::filesystem::path& path, const std::string& what) {
+  return ParseJson(ReadTextFile(path, what), path.string());
 }
 
 }  // namespace jgpm

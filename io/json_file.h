@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -17,7 +18,10 @@ namespace jgpm {
 // matrix reads as one row per line. Numbers keep full round-trip precision.
 std::string FormatJson(const nlohmann::json& value);
 
-// Reads and parses a JSON file; InputError with the parser's line and column otherwise.
+// Parses JSON text; InputError naming `source` with the parser's line and column, or the
+// number that overflows a double (1e999), otherwise.
+nlohmann::json ParseJson(const std::string& text, const std::string& source);
+// Reads and parses a JSON file (ReadTextFile, then ParseJson).
 nlohmann::json ReadJsonFile(const std::filesystem::path& path, const std::string& what);
 
 // Typed access to fields of a parsed file. `where` prefixes the key in messages, e.g.
@@ -32,7 +36,8 @@ class JsonReader {
     return object.at(key);
   }
 
-  // Numbers must be finite (JSON writers turn NaN into null, which fails as a wrong type).
+  // Numbers must be finite (JSON writers turn NaN into null, which fails as a wrong type),
+  // alone or in arrays and arrays of arrays.
   template <typename T>
   T Get(const nlohmann::json& object, const std::string& key, const std::string& where) const {
     const nlohmann::json& value = Field(object, key, where);
@@ -40,6 +45,13 @@ class JsonReader {
       T result = value.get<T>();
       if constexpr (std::is_floating_point_v<T>) {
         if (!std::isfinite(result)) Fail(where + key, "expected a finite number");
+      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+        for (double v : result)
+          if (!std::isfinite(v)) Fail(where + key, "expected finite numbers");
+      } else if constexpr (std::is_same_v<T, std::vector<std::vector<double>>>) {
+        for (const std::vector<double>& row : result)
+          for (double v : row)
+            if (!std::isfinite(v)) Fail(where + key, "expected finite numbers");
       }
       return result;
     } catch (const nlohmann::json::exception&) {

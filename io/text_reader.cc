@@ -7,6 +7,12 @@
 #include <sstream>
 #include <system_error>
 
+#include <cerrno>
+#include <cstring>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "io/error.h"
 
 namespace jgpm {
@@ -42,7 +48,7 @@ std::string ReadTextFile(const fs::path& path, const std::string& what) {
   return text;
 }
 
-void WriteFileAtomic(const fs::path& path, const std::string& text) {
+fs::path WriteTemporaryBeside(const fs::path& path, const std::string& bytes) {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(parent, ec)) {
@@ -51,19 +57,34 @@ void WriteFileAtomic(const fs::path& path, const std::string& text) {
   if (fs::is_directory(path, ec)) {
     ThrowInputError(path.string(), "is a directory, expected an output file name");
   }
-  fs::path temporary = path;
-  temporary += ".tmp-jgpm";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) ThrowInputError(path.string(), "cannot be written (permission or disk?)");
-    out << text;
-    out.flush();
-    if (!out) {
-      out.close();
-      fs::remove(temporary, ec);
-      ThrowInputError(path.string(), "write failed (disk full?)");
-    }
+  std::string name = path.string() + ".tmp-XXXXXX";
+  const int fd = ::mkstemp(name.data());  // a name no other writer has
+  if (fd < 0) ThrowInputError(path.string(), std::string("cannot be written (") + std::strerror(errno) + ")");
+  // mkstemp makes the file private (0600); give it the permissions any new file gets.
+  static const mode_t kUmask = [] {  // read once: umask can only be read by setting it
+    const mode_t mask = ::umask(022);
+    ::umask(mask);
+    return mask;
+  }();
+  ::fchmod(fd, 0666 & ~kUmask);
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
   }
+  const bool closed = ::close(fd) == 0;
+  if (done != bytes.size() || !closed) {
+    fs::remove(name, ec);
+    ThrowInputError(path.string(), "write failed (disk full?)");
+  }
+  return name;
+}
+
+void WriteFileAtomic(const fs::path& path, const std::string& text) {
+  const fs::path temporary = WriteTemporaryBeside(path, text);
+  std::error_code ec;
   fs::rename(temporary, path, ec);
   if (ec) {
     fs::remove(temporary, ec);

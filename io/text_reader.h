@@ -19,9 +19,15 @@ std::string ReadTextFile(const std::filesystem::path& path, const std::string& w
 // InputError when `path` is missing or a directory.
 void CheckInputFile(const std::filesystem::path& path, const std::string& what);
 
-// Writes `text` (any bytes) to `path` atomically (temporary file in the same folder, then rename), so
-// a failure never leaves a half-written or clobbered file. InputError on failure.
+// Writes `text` (any bytes) to `path` atomically (a temporary file of a name no other
+// writer uses, in the same folder, then rename), so a failure never leaves a half-written
+// or clobbered file and two writers never mix their bytes. InputError on failure.
 void WriteFileAtomic(const std::filesystem::path& path, const std::string& text);
+// The first half of WriteFileAtomic: `bytes` in a new temporary file beside `path`
+// ("<path>.tmp-XXXXXX"), whose name is returned; the caller renames or removes it.
+// InputError naming `path` when its folder does not exist, it is a folder, or the write
+// fails (nothing is left behind then).
+std::filesystem::path WriteTemporaryBeside(const std::filesystem::path& path, const std::string& bytes);
 
 // Splits a line at blanks (spaces, tabs).
 std::vector<std::string_view> SplitBlanks(std::string_view line);

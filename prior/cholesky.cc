@@ -6,9 +6,6 @@
 
 #include "io/error.h"
 
-extern "C" void openblas_set_num_threads(int num_threads);
-extern "C" int openblas_get_num_threads();
-
 namespace jgpm {
 
 bool Cholesky::Compute(const Eigen::MatrixXd& k, double max_relative_jitter) {
@@ -62,6 +59,11 @@ Eigen::MatrixXd Cholesky::HalfSolve(const Eigen::MatrixXd& b) const {
   return factor_.triangularView<Eigen::Lower>().solve(b);
 }
 
+void Cholesky::HalfSolveInPlace(Eigen::Ref<Eigen::MatrixXd> b) const {
+  JGPM_CHECK(ok_ && b.rows() == factor_.rows());
+  factor_.triangularView<Eigen::Lower>().solveInPlace(b);
+}
+
 Eigen::MatrixXd Cholesky::HalfSolveTransposed(const Eigen::MatrixXd& b) const {
   JGPM_CHECK(ok_ && b.rows() == factor_.rows());
   return factor_.triangularView<Eigen::Lower>().transpose().solve(b);
@@ -79,12 +81,6 @@ Eigen::MatrixXd Cholesky::Inverse() const {
   inverse.triangularView<Eigen::StrictlyUpper>() = inverse.transpose();
   return inverse;
 }
-
-void SetLinearAlgebraThreads(int threads) {
-  if (threads > 0) openblas_set_num_threads(threads);
-}
-
-int LinearAlgebraThreads() { return openblas_get_num_threads(); }
 
 namespace {
 // Callers check for NaN/inf before factorising; LAPACKE's own full-matrix scans would only

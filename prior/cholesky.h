@@ -33,6 +33,8 @@ class Cholesky {
   // L^-1 b, where K + jitter I = L L^T: |L^-1 k|^2 = k^T K^-1 k without the cancellation
   // of a quadratic form in an explicit inverse.
   Eigen::MatrixXd HalfSolve(const Eigen::MatrixXd& b) const;
+  // b <- L^-1 b, in place (no allocation for the caller's workspace).
+  void HalfSolveInPlace(Eigen::Ref<Eigen::MatrixXd> b) const;
   // L^-T b.
   Eigen::MatrixXd HalfSolveTransposed(const Eigen::MatrixXd& b) const;
   // (K + jitter I)^-1 as a full symmetric matrix, from the factor (LAPACK dpotri).
@@ -43,25 +45,6 @@ class Cholesky {
   double jitter_ = 0;
   bool ok_ = false;
   std::string why_;
-};
-
-// Threads OpenBLAS may use (the `--threads` option); 0 leaves its default. The setting
-// is process-wide.
-void SetLinearAlgebraThreads(int threads);
-int LinearAlgebraThreads();
-
-// Sets the OpenBLAS thread count while in scope and restores the previous one after.
-class LinearAlgebraThreadScope {
- public:
-  explicit LinearAlgebraThreadScope(int threads) : previous_(LinearAlgebraThreads()) {
-    SetLinearAlgebraThreads(threads);
-  }
-  ~LinearAlgebraThreadScope() { SetLinearAlgebraThreads(previous_); }
-  LinearAlgebraThreadScope(const LinearAlgebraThreadScope&) = delete;
-  LinearAlgebraThreadScope& operator=(const LinearAlgebraThreadScope&) = delete;
-
- private:
-  int previous_;
 };
 
 }  // namespace jgpm

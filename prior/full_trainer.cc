@@ -133,18 +133,18 @@ TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
   summary.max_jitter = function->max_jitter_;
   summary.message = ceres_summary.message;
   if (!reporter.stopped_.empty()) {
-    summary.termination = "stopped";
+    summary.termination = Termination::kStopped;
     summary.message = reporter.stopped_;
   } else if (reporter.converged_) {
-    summary.termination = "converged";
+    summary.termination = Termination::kConverged;
     summary.message = "objective improved by less than " + std::to_string(options.plateau_tolerance) +
                       " (relative) over " + std::to_string(options.plateau_window) + " iterations";
   } else if (ceres_summary.termination_type == ceres::CONVERGENCE) {
-    summary.termination = "converged";
+    summary.termination = Termination::kConverged;
   } else if (ceres_summary.termination_type == ceres::NO_CONVERGENCE) {
-    summary.termination = "no convergence";
+    summary.termination = Termination::kNoConvergence;
   } else {
-    summary.termination = "numerical failure";
+    summary.termination = Termination::kNumericalFailure;
     if (!function->last_failure_.empty()) summary.message += " (" + function->last_failure_ + ")";
   }
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -3,12 +3,18 @@
 // and its gradient), the GPDM dynamics step, and for the JGPM family the manifold
 // coordinates (pose phase, gait, stride scale) <-> latent point.
 //
-// GaitModelData is everything a model file holds; GaitModel::Create builds the caches
-// predictions need. Two variants: the PCA baseline (linear) and the GP models.
+// GaitModelData is everything a model file holds; GaitModel::Create checks it and builds
+// the caches predictions need. Variants: the PCA baseline (prior/pca_gait_model.h) and the
+// GP models (prior/gp_gait_model.h).
+//
+// Every method is const and thread-safe. The batched calls take many latent points at
+// once (rows of a column-major T x 3 matrix) and a ModelWorkspace the caller owns, one
+// per thread: after the workspace has grown to the largest batch, they allocate nothing.
 #pragma once
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +22,8 @@
 
 #include "io/gait_pose.h"
 #include "io/skeleton.h"
+#include "prior/latent_density.h"
+#include "prior/manifold_map.h"
 #include "prior/model_kind.h"
 #include "prior/objective.h"
 #include "prior/topology.h"
@@ -23,13 +31,6 @@
 #include "prior/training_set.h"
 
 namespace jgpm {
-
-// A point on the joint gait-pose manifold.
-struct ManifoldPoint {
-  double phase = 0;  // along the walking cycle, [0, 1); 0 = the cycles' first pose
-  double gait = 0;   // position along the gait manifold, in gaits (torus: wraps at G)
-  double scale = 1;  // stride scale (the layers' scales, e.g. 0.4 .. 1.25)
-};
 
 struct GaitModelData {
   ModelKind kind = ModelKind::kPca;
@@ -50,12 +51,26 @@ struct GaitModelData {
   TrainingSummary summary;
 };
 
+// Scratch memory for the batched calls. Not thread-safe itself: one per thread.
+class ModelWorkspace {
+ public:
+  // A rows x cols column-major block over scratch buffer `slot` (0-2), which grows when
+  // needed and never shrinks; its contents are undefined.
+  Eigen::Map<Eigen::MatrixXd> Block(int slot, Eigen::Index rows, Eigen::Index cols);
+
+ private:
+  std::array<std::vector<double>, 3> buffers_;
+};
+
 class GaitModel {
  public:
-  // Builds the caches. InputError naming `source` when the data are inconsistent (sizes,
-  // non-finite numbers, a kernel that cannot be factorised, an unreadable skeleton).
+  // Checks the data and builds the caches. InputError naming `source` when the data are
+  // inconsistent (sizes, indices, non-finite numbers, a kernel that cannot be factorised,
+  // an unreadable skeleton): a model file can never abort the process.
   static std::unique_ptr<GaitModel> Create(GaitModelData data, const std::string& source);
-  virtual ~GaitModel() = default;
+  virtual ~GaitModel();
+  GaitModel(const GaitModel&) = delete;
+  GaitModel& operator=(const GaitModel&) = delete;
 
   const GaitModelData& data() const { return data_; }
   ModelKind kind() const { return data_.kind; }
@@ -63,20 +78,13 @@ class GaitModel {
   int NumPoints() const { return data_.set.NumPoints(); }
   const Eigen::MatrixXd& latent() const { return data_.params.x; }
 
+  // --- One latent point.
   // Mean pose (channels in degrees) at latent point x, and the predictive variance of the
   // latent function (normalised units; 0 on the training data, growing away from it).
-  virtual void Predict(const Eigen::Vector3d& x, Eigen::VectorXd* pose_deg,
-                       double* variance) const = 0;
-  // Predictive variances at many latent points (rows of xs), as Predict gives them.
-  virtual Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const;
-  // Mean poses (degrees, T x D) at many latent points (rows of xs, T x 3), as Predict gives
-  // them, in one batch. With `jacobians`, also d pose / d x_d for each latent dimension d
-  // (each T x D: row t holds the derivatives of pose t).
-  virtual Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs,
-                                    std::array<Eigen::MatrixXd, 3>* jacobians = nullptr) const = 0;
+  virtual void Predict(const Eigen::Vector3d& x, Eigen::VectorXd* pose_deg, double* variance) const = 0;
   // ln of the latent density up to a constant, O(N): a kernel density over the training
-  // latent points (width: median nearest-neighbour distance); PCA: the Gaussian of its
-  // scores. `gradient` may be null.
+  // latent points (prior/latent_density.h); PCA: the Gaussian of its scores. `gradient`
+  // may be null.
   virtual double LogDensity(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const;
   // ln p(x|M) up to a constant: LogDensity plus, for GP models, -D/2 ln variance(x), which
   // costs O(N^2). `gradient` may be null.
@@ -87,14 +95,30 @@ class GaitModel {
   virtual Eigen::Vector3d NextLatent(const Eigen::Vector3d& x, double* variance,
                                      Eigen::Matrix3d* jacobian = nullptr) const;
 
-  // JGPM family.
-  bool HasManifold() const { return !data_.gait_order.empty(); }
-  // Interpolates the learned latent points over (pose, gait position, layer): periodic in
-  // phase, periodic in gait on a torus and clamped to the ends on a cylinder, linear in
-  // scale between layers and clamped outside them.
+  // --- Batches: xs is T x 3 (column-major), outputs are sized by the caller.
+  // Mean poses, degrees: `poses_deg` is T x D.
+  virtual void MeanPoses(const Eigen::Ref<const Eigen::MatrixXd>& xs, Eigen::Ref<Eigen::MatrixXd> poses_deg,
+                         ModelWorkspace* workspace) const = 0;
+  // LogDensity of each point: `out` has T entries.
+  virtual void LogDensities(const Eigen::Ref<const Eigen::MatrixXd>& xs, Eigen::Ref<Eigen::VectorXd> out,
+                            ModelWorkspace* workspace) const;
+  // LogPrior of each point (GP models: O(N^2) each).
+  virtual void LogPriors(const Eigen::Ref<const Eigen::MatrixXd>& xs, Eigen::Ref<Eigen::VectorXd> out,
+                         ModelWorkspace* workspace) const = 0;
+  // NextLatent of each point: `next` is T x 3.
+  virtual void NextLatents(const Eigen::Ref<const Eigen::MatrixXd>& xs, Eigen::Ref<Eigen::MatrixXd> next,
+                           ModelWorkspace* workspace) const;
+
+  // Conveniences over the batches (they allocate). Predictive variances of the rows of xs.
+  virtual Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const;
+  // Mean poses (T x D) of the rows of xs; with `jacobians`, also d pose / d x_d for each
+  // latent dimension d (each T x D: row t holds the derivatives of pose t).
+  virtual Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs,
+                                    std::array<Eigen::MatrixXd, 3>* jacobians = nullptr) const = 0;
+
+  // --- JGPM family (prior/manifold_map.h).
+  bool HasManifold() const { return manifold_.has_value(); }
   Eigen::Vector3d ManifoldToLatent(const ManifoldPoint& point) const;
-  // The manifold point whose latent point is nearest x (nearest training point, then
-  // Gauss-Newton on the interpolation).
   ManifoldPoint LatentToManifold(const Eigen::Vector3d& x) const;
 
   // Joint positions (mm, 3 x 17 measured joints) of a pose on the reference skeleton.
@@ -102,26 +126,19 @@ class GaitModel {
   void JointPositions(const Eigen::VectorXd& pose_deg, Eigen::Matrix3Xd* joints) const;
 
  protected:
+  // Checks everything but the variant's own parameters (InputError naming `source`).
   GaitModel(GaitModelData data, const std::string& source);
   Eigen::VectorXd Denormalise(const Eigen::VectorXd& y) const;
+  // Rows of normalised poses -> degrees, in place.
+  void DenormaliseRows(Eigen::Ref<Eigen::MatrixXd> y) const;
+  static void CheckBatch(const Eigen::Ref<const Eigen::MatrixXd>& xs, Eigen::Index out_rows, Eigen::Index out_cols,
+                         Eigen::Index rows, Eigen::Index cols);
 
   GaitModelData data_;
   Skeleton skeleton_;
   std::unique_ptr<GaitPoseKinematics> kinematics_;
-  double density_width_ = 1.0;
-
- private:
-  Eigen::Vector3d LatentAt(int layer, int gait_position, int pose) const;
-  std::vector<int> layers_by_scale_;
+  std::optional<LatentDensity> density_;
+  std::optional<ManifoldMap> manifold_;  // points into data_
 };
-
-// Mean 3-D joint position error (mm, over the 17 measured joints on the reference
-// skeleton) between each training pose and the model's mean pose at its latent point: how
-// well the model reproduces what it was trained on.
-double TrainingReconstructionErrorMm(const GaitModel& model);
-
-// A few lines describing a model: kind, data, hyper-parameters, training summary, latent
-// extent and training reconstruction error.
-std::string DescribeModel(const GaitModel& model);
 
 }  // namespace jgpm

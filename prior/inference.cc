@@ -155,11 +155,12 @@ std::vector<int> ObservedChannels(const GaitModel& model, const PoseObservations
 }  // namespace
 
 bool InferenceOptions::Check(std::string* why) const {
-  if (!(observation_noise_deg > 0)) *why = "observation_noise_deg must be > 0";
-  else if (!(dynamics_tolerance > 0)) *why = "dynamics_tolerance must be > 0";
-  else if (max_iterations < 0) *why = "max_iterations must be >= 0";
-  else return true;
-  return false;
+  const char* problem = nullptr;
+  if (!(observation_noise_deg > 0)) problem = "observation_noise_deg must be > 0";
+  else if (!(dynamics_tolerance > 0)) problem = "dynamics_tolerance must be > 0";
+  else if (max_iterations < 0) problem = "max_iterations must be >= 0";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 struct SequenceProblem::Impl {
@@ -245,9 +246,17 @@ InferenceResult SequenceProblem::Solve(const Eigen::MatrixXd& initial_latent) {
   ceres::Solver::Summary summary;
   ceres::Solve(options, &impl_->problem, &summary);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.message = summary.message;
+  result.termination = summary.termination_type == ceres::CONVERGENCE      ? Termination::kConverged
+                       : summary.termination_type == ceres::NO_CONVERGENCE ? Termination::kNoConvergence
+                                                                           : Termination::kNumericalFailure;
   result.latent = Eigen::Map<const PackedLatent>(impl_->x.data(), impl_->t, 3);
   result.final_objective = Evaluate(result.latent, nullptr);
   result.poses_deg = impl_->model.MeanPoses(result.latent);
+  if (!result.poses_deg.allFinite()) {
+    result.termination = Termination::kNumericalFailure;
+    result.message = "the model's mean poses are not finite";
+  }
   return result;
 }
 

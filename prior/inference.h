@@ -34,6 +34,7 @@
 #include <Eigen/Core>
 
 #include "prior/gait_model.h"
+#include "prior/termination.h"
 
 namespace jgpm {
 
@@ -61,6 +62,10 @@ struct InferenceResult {
   double initial_objective = 0;    // E at initial_latent
   double final_objective = 0;
   int iterations = 0;
+  // How Levenberg-Marquardt ended. On a numerical failure the latent points are the last
+  // ones it could evaluate (the start, if none).
+  Termination termination = Termination::kNoConvergence;
+  std::string message;             // Ceres's
 };
 
 // E(X) for one observed sequence, as a Ceres problem. References `model`, which must

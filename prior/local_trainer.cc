@@ -8,7 +8,7 @@
 #include <nanoflann.hpp>
 
 #include "io/error.h"
-#include "prior/cholesky.h"
+#include "prior/blas_threads.h"
 
 namespace jgpm {
 namespace {
@@ -29,16 +29,17 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 }  // namespace
 
 bool LocalTrainingOptions::Check(std::string* why) const {
-  if (neighbourhood_size < 4) *why = "neighbourhood_size must be at least 4";
-  else if (!(max_neighbourhood_fraction > 0 && max_neighbourhood_fraction <= 1)) *why = "max_neighbourhood_fraction must be in (0, 1]";
-  else if (!(latent_step > 0) || !(hyper_step >= 0)) *why = "step sizes must be positive";
-  else if (!(step_decay > 0 && step_decay <= 1)) *why = "step_decay must be in (0, 1]";
-  else if (max_steps < 1) *why = "max_steps must be >= 1";
-  else if (evaluation_interval < 0) *why = "evaluation_interval must be >= 0";
-  else if (!(plateau_tolerance >= 0)) *why = "plateau_tolerance must be >= 0";
-  else if (plateau_window < 1) *why = "plateau_window must be >= 1";
-  else return true;
-  return false;
+  const char* problem = nullptr;
+  if (neighbourhood_size < 4) problem = "neighbourhood_size must be at least 4";
+  else if (!(max_neighbourhood_fraction > 0 && max_neighbourhood_fraction <= 1)) problem = "max_neighbourhood_fraction must be in (0, 1]";
+  else if (!(latent_step > 0) || !(hyper_step >= 0)) problem = "step sizes must be positive";
+  else if (!(step_decay > 0 && step_decay <= 1)) problem = "step_decay must be in (0, 1]";
+  else if (max_steps < 1) problem = "max_steps must be >= 1";
+  else if (evaluation_interval < 0) problem = "evaluation_interval must be >= 0";
+  else if (!(plateau_tolerance >= 0)) problem = "plateau_tolerance must be >= 0";
+  else if (plateau_window < 1) problem = "plateau_window must be >= 1";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 int LocalNeighbourhoodSize(int num_points, const LocalTrainingOptions& options) {
@@ -87,7 +88,7 @@ TrainingSummary TrainLocal(const GpObjective& objective,
   ObjectiveValue full = objective.Evaluate(*params, nullptr);
   summary.evaluations = 1;
   if (!full.ok) {
-    summary.termination = "numerical failure";
+    summary.termination = Termination::kNumericalFailure;
     summary.message = full.why;
     return summary;
   }
@@ -121,7 +122,7 @@ TrainingSummary TrainLocal(const GpObjective& objective,
   GpParameters gradient;
   std::vector<double> history{best_value};
   auto last_report = start;
-  summary.termination = "no convergence";
+  summary.termination = Termination::kNoConvergence;
   summary.message = "maximum number of steps reached";
   for (int step = 1; step <= options.max_steps; ++step) {
     const std::vector<int>& subset = neighbourhoods[pick(random)];
@@ -158,7 +159,7 @@ TrainingSummary TrainLocal(const GpObjective& objective,
     }
     ++summary.evaluations;
     if (!full.ok) {
-      summary.termination = "numerical failure";
+      summary.termination = Termination::kNumericalFailure;
       summary.message = full.why;
       break;
     }
@@ -189,14 +190,14 @@ TrainingSummary TrainLocal(const GpObjective& objective,
     const int window = options.plateau_window;
     if (static_cast<int>(history.size()) > window &&
         history[history.size() - 1 - window] - best_value < options.plateau_tolerance * std::abs(best_value)) {
-      summary.termination = "converged";
+      summary.termination = Termination::kConverged;
       summary.message = "objective improved by less than " + std::to_string(options.plateau_tolerance) +
                         " (relative) over " + std::to_string(window) + " evaluations of " +
                         std::to_string(interval) + " steps";
       break;
     }
     if (!stop.empty()) {
-      summary.termination = "stopped";
+      summary.termination = Termination::kStopped;
       summary.message = stop;
       break;
     }

@@ -78,7 +78,7 @@ json ModelJson(const GaitModelData& d) {
   model["skeleton"] = {{"trial", d.skeleton_trial}, {"asf", d.skeleton_asf}};
   const TrainingSummary& r = d.summary;
   model["summary"] = {{"learning", r.learning},
-                      {"termination", r.termination},
+                      {"termination", std::string(TerminationName(r.termination))},
                       {"message", r.message},
                       {"iterations", r.iterations},
                       {"evaluations", r.evaluations},
@@ -127,7 +127,7 @@ std::unique_ptr<GaitModel> ParseModelFile(const std::string& text, const std::st
   json file;
   try {
     file = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e999
     ThrowInputError(source, std::string("not a complete model file (invalid JSON: ") + e.what() + ")");
   }
   const JsonReader in(source);
@@ -197,7 +197,9 @@ std::unique_ptr<GaitModel> ParseModelFile(const std::string& text, const std::st
   const json& r = in.Field(model, "summary", "model.");
   const std::string w = "model.summary.";
   d.summary.learning = in.Get<std::string>(r, "learning", w);
-  d.summary.termination = in.Get<std::string>(r, "termination", w);
+  if (!ParseTermination(in.Get<std::string>(r, "termination", w), &d.summary.termination)) {
+    in.Fail(w + "termination", "is not one of converged, no convergence, stopped, numerical failure");
+  }
   d.summary.message = in.Get<std::string>(r, "message", w);
   d.summary.iterations = in.Get<int>(r, "iterations", w);
   d.summary.evaluations = in.Get<int>(r, "evaluations", w);

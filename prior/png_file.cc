@@ -10,10 +10,14 @@
 
 namespace jgpm {
 
-void WritePngFile(const std::filesystem::path& path, const cv::Mat& image) {
+std::string EncodePng(const cv::Mat& image, const std::string& source) {
   std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) ThrowInputError(path.string(), "PNG encoding failed");
-  WriteFileAtomic(path, std::string(bytes.begin(), bytes.end()));
+  if (!cv::imencode(".png", image, bytes)) ThrowInputError(source, "PNG encoding failed");
+  return std::string(bytes.begin(), bytes.end());
+}
+
+void WritePngFile(const std::filesystem::path& path, const cv::Mat& image) {
+  WriteFileAtomic(path, EncodePng(image, path.string()));
 }
 
 }  // namespace jgpm

@@ -10,6 +10,7 @@
 #include "io/bvh_conversion.h"
 #include "io/enum_name.h"
 #include "io/error.h"
+#include "io/output_batch.h"
 #include "io/gait_pose.h"
 #include "io/kinematics.h"
 #include "io/text_reader.h"
@@ -104,23 +105,24 @@ Motion PosesToMotion(const GaitModel& model, const Eigen::MatrixXd& poses_deg, d
 }
 
 std::vector<std::filesystem::path> WriteSynthesis(const GaitModel& model, const Motion& motion,
-                                                  const std::filesystem::path& out) {
+                                                  const std::filesystem::path& out, const std::filesystem::path& png) {
   const std::string extension = out.extension().string();
+  OutputBatch batch;
   if (extension == ".amc") {
+    batch.Add(out, FormatAmc(motion, model.skeleton()));
     std::filesystem::path asf = out;
     asf.replace_extension(".asf");
-    WriteFileAtomic(asf, model.data().skeleton_asf);
-    WriteAmc(out, motion, model.skeleton());
-    return {out, asf};
+    batch.Add(asf, model.data().skeleton_asf);
+  } else if (extension == ".bvh") {
+    batch.Add(out, FormatBvh(AcclaimToBvh(model.skeleton(), motion)));
+  } else {
+    ThrowInputError(out.string(), "expected a .amc or .bvh file name");
   }
-  if (extension == ".bvh") {
-    WriteBvh(out, AcclaimToBvh(model.skeleton(), motion));
-    return {out};
-  }
-  ThrowInputError(out.string(), "expected a .amc or .bvh file name");
+  if (!png.empty()) batch.Add(png, EncodePng(StickFigures(model, motion), png.string()));
+  return batch.Commit();
 }
 
-void PlotStickFigures(const GaitModel& model, const Motion& motion, const std::filesystem::path& png, int figures) {
+cv::Mat StickFigures(const GaitModel& model, const Motion& motion, int figures) {
   const Skeleton& skeleton = model.skeleton();
   const Kinematics kinematics(skeleton);
   figures = std::max(1, std::min(figures, motion.NumFrames()));
@@ -155,7 +157,7 @@ void PlotStickFigures(const GaitModel& model, const Motion& motion, const std::f
     cv::putText(image, std::to_string(frames[f]), {f * cell + 5, height + 22}, cv::FONT_HERSHEY_SIMPLEX, 0.45, {0, 0, 0}, 1,
                 cv::LINE_AA);
   }
-  WritePngFile(png, image);
+  return image;
 }
 
 }  // namespace jgpm

@@ -18,6 +18,7 @@
 #include <string_view>
 
 #include <Eigen/Core>
+#include <opencv2/core.hpp>
 
 #include "io/motion.h"
 #include "prior/gait_model.h"
@@ -52,14 +53,15 @@ SynthesisResult Synthesise(const GaitModel& model, SynthesisPath path, const Syn
 // the floor (y = 0).
 Motion PosesToMotion(const GaitModel& model, const Eigen::MatrixXd& poses_deg, double frames_per_second);
 
-// Writes OUT.amc with OUT.asf beside it (the reference skeleton), or OUT.bvh; the format
-// follows the extension. Returns the files written. InputError for another extension.
-std::vector<std::filesystem::path> WriteSynthesis(const GaitModel& model, const Motion& motion,
-                                                  const std::filesystem::path& out);
-
 // A strip of `figures` stick figures seen from the side (walking to the right), evenly
 // spaced over the motion.
-void PlotStickFigures(const GaitModel& model, const Motion& motion, const std::filesystem::path& png,
-                      int figures = 12);
+cv::Mat StickFigures(const GaitModel& model, const Motion& motion, int figures = 12);
+
+// Writes OUT.amc with OUT.asf beside it (the reference skeleton), or OUT.bvh; the format
+// follows the extension; with `png`, also StickFigures there. All the files or none.
+// Returns the files written. InputError for another extension or a file not writable.
+std::vector<std::filesystem::path> WriteSynthesis(const GaitModel& model, const Motion& motion,
+                                                  const std::filesystem::path& out,
+                                                  const std::filesystem::path& png = {});
 
 }  // namespace jgpm

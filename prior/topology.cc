@@ -66,13 +66,16 @@ Eigen::VectorXd LleWeights(const Eigen::VectorXd& c, double regularization) {
 }  // namespace
 
 bool TopologyOptions::Check(std::string* why) const {
-  if (!(gait_radius > 0)) *why = "gait_radius must be > 0";
-  else if (!(gait_spacing > 0)) *why = "gait_spacing must be > 0";
-  else if (within_layer_neighbours < 1) *why = "within_layer_neighbours must be >= 1";
-  else if (cross_layer_neighbours < 0) *why = "cross_layer_neighbours must be >= 0";
-  else if (!(lle_regularization > 0)) *why = "lle_regularization must be > 0";
-  else return true;
-  return false;
+  const char* problem = nullptr;
+  if (!(gait_radius > 0)) problem = "gait_radius must be > 0";
+  else if (!(gait_spacing > 0)) problem = "gait_spacing must be > 0";
+  else if (within_layer_neighbours < 1) problem = "within_layer_neighbours must be >= 1";
+  else if (cross_layer_neighbours < 0 || cross_layer_neighbours % 2 != 0) {
+    // The middle layer takes half from each adjacent layer: every point then has as many.
+    problem = "cross_layer_neighbours must be even and >= 0";
+  } else if (!(lle_regularization > 0)) problem = "lle_regularization must be > 0";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 Eigen::Vector3d Topology::PriorPoint(double alpha, double gait, double radius) const {

@@ -5,7 +5,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "io/error.h"
-#include "prior/cholesky.h"
+#include "io/text_reader.h"
+#include "prior/blas_threads.h"
 #include "prior/topology.h"
 
 namespace jgpm {
@@ -35,16 +36,19 @@ Eigen::MatrixXd PrincipalBasis(const Eigen::MatrixXd& y) {
 
 }  // namespace
 
+ReferenceSkeleton ChooseReferenceSkeleton(const GaitDataset& dataset, const std::filesystem::path& data_root) {
+  for (const GaitTrial& trial : dataset.trials) {
+    if (trial.cycle.clean) return {trial.id.name, ReadTextFile(data_root / trial.asf, "an ASF skeleton")};
+  }
+  ThrowInputError("dataset " + dataset.split, "has no clean gait cycle");
+}
+
 bool TrainingOptions::Check(std::string* why) const {
-  if (!(topology_sigma2 > 0)) {
-    *why = "topology sigma^2 must be > 0";
-    return false;
-  }
-  if (threads < 0) {
-    *why = "threads must be >= 0";
-    return false;
-  }
-  return local.Check(why);
+  const char* problem = nullptr;
+  if (!(topology_sigma2 > 0)) problem = "topology sigma^2 must be > 0";
+  else if (threads < 0) problem = "threads must be >= 0";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr && local.Check(why);
 }
 
 std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
@@ -52,7 +56,7 @@ std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
                                           const TrainingOptions& options) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("training options", why);
-  SetLinearAlgebraThreads(options.threads);
+  const LinearAlgebraThreadScope threads(options.threads);  // the caller's setting comes back
   const ModelSpec spec = SpecFor(options.kind, static_cast<int>(dataset.channel_names.size()));
   GaitModelData data;
   data.kind = options.kind;
@@ -73,7 +77,7 @@ std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
     data.pca_basis = basis;
     data.params.x = scores;
     data.summary.learning = "closed form";
-    data.summary.termination = "converged";
+    data.summary.termination = Termination::kConverged;
     data.summary.message = "principal components of the training poses";
     data.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return GaitModel::Create(std::move(data), "training");
@@ -113,9 +117,9 @@ std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
     data.learning = "local";
     data.summary = TrainLocal(objective, neighbourhoods, &data.params, local);
   }
-  if (!data.summary.usable()) {
-    ThrowInputError("training", "numerical failure: " + data.summary.message);
-  }
+  // A numerical failure keeps the best parameters found before it (the trainers return
+  // those); the summary says how training ended. Only when even those cannot be factorised
+  // (the data themselves are degenerate) is there no model.
   return GaitModel::Create(std::move(data), "training");
 }
 

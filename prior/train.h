@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -34,10 +35,16 @@ struct ReferenceSkeleton {
   std::string asf;    // ASF text
 };
 
+// The first clean trial's skeleton, its ASF read from `data_root` (a dataset's own
+// data_root, or the one given). InputError when no trial is clean or the ASF is missing.
+ReferenceSkeleton ChooseReferenceSkeleton(const GaitDataset& dataset, const std::filesystem::path& data_root);
+
 // Initial latent points: the topology prior's coordinates (JGPM family), else the
 // training poses' 3 leading principal components scaled to unit variance. Hyper-parameters
 // start at b = (1, 1, 100) (noise std 0.1 of a normalised channel), a = (1, 1, 0.1, 1e4),
-// W = 1. InputError for bad options or data.
+// W = 1. InputError for bad options or data. Training that ends in a numerical failure
+// returns the best model found before it, its summary saying so. The OpenBLAS thread
+// count (`threads`) applies while training and is restored after.
 std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
                                           const ReferenceSkeleton& skeleton,
                                           const TrainingOptions& options);

@@ -16,7 +16,11 @@ std::string TrainingBudget::Exhausted(double elapsed_seconds) const {
 
 std::string TrainingSummary::BriefReport() const {
   char line[512];
-  const std::string how = termination == "stopped" ? "stopped (" + message + ")" : termination;
+  const std::string name(TerminationName(termination));
+  const std::string how = termination == Termination::kStopped ||
+                                  termination == Termination::kNumericalFailure
+                              ? name + " (" + message + ")"
+                              : name;
   std::snprintf(line, sizeof(line),
                 "%s learning: %s after %d iterations, objective %.6g -> %.6g, max jitter %.2g, "
                 "%.1f s",

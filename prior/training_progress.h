@@ -5,6 +5,8 @@
 #include <functional>
 #include <string>
 
+#include "prior/termination.h"
+
 namespace jgpm {
 
 struct TrainingProgress {
@@ -32,9 +34,8 @@ struct TrainingBudget {
 
 struct TrainingSummary {
   std::string learning;      // "full", "local" or "closed form" (PCA)
-  // "converged", "no convergence" (iteration cap), "stopped" (time budget or interrupt)
-  // or "numerical failure"
-  std::string termination;
+  // A numerical failure still leaves the best parameters found before it.
+  Termination termination = Termination::kNoConvergence;
   std::string message;       // detail from the optimiser
   int iterations = 0;
   int evaluations = 0;       // objective evaluations (local: of the full objective)
@@ -43,7 +44,7 @@ struct TrainingSummary {
   double max_jitter = 0;
   double wall_seconds = 0;
 
-  bool usable() const { return termination != "numerical failure"; }
+  bool usable() const { return termination != Termination::kNumericalFailure; }
   // One line: how it ended, iterations, final objective, wall time.
   std::string BriefReport() const;
 };

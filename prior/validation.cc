@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <random>
@@ -12,6 +13,7 @@
 #include "io/enum_name.h"
 #include "io/error.h"
 #include "io/text_reader.h"
+#include "prior/blas_threads.h"
 #include "prior/training_set.h"
 
 namespace jgpm {
@@ -31,8 +33,13 @@ double Mean(const std::vector<double>& v) {
   return v.empty() ? 0 : sum / v.size();
 }
 
+struct TrialOutcome {
+  double error_mm = 0;
+  bool failed = false;  // inference ended in a numerical failure
+};
+
 // Error of one trial under one case, for noise draw `draw` (filtering; 0 otherwise).
-double TrialError(const GaitModel& model, const ValidationTrial& trial, int trial_index,
+TrialOutcome TrialError(const GaitModel& model, const ValidationTrial& trial, int trial_index,
                   const ValidationCase& c, int draw, const InferenceOptions& inference) {
   const Eigen::MatrixXd truth = ScaleGait(trial.poses_deg, c.scale);
   const int d = static_cast<int>(truth.cols());
@@ -58,7 +65,9 @@ double TrialError(const GaitModel& model, const ValidationTrial& trial, int tria
     }
   }
   const InferenceResult result = InferLatentSequence(model, observations, inference);
-  return MeanJointErrorMm(*trial.kinematics, result.poses_deg, truth);
+  if (!result.poses_deg.allFinite()) ThrowInputError("inference", result.message);
+  return {MeanJointErrorMm(*trial.kinematics, result.poses_deg, truth),
+          result.termination == Termination::kNumericalFailure};
 }
 
 }  // namespace
@@ -109,14 +118,15 @@ std::vector<std::string_view> MissingJoints(MissingPart part) {
 }
 
 bool ValidationCase::Check(std::string* why) const {
-  if (!(scale > 0)) *why = "scale must be > 0";
+  const char* problem = nullptr;
+  if (!(scale > 0)) problem = "scale must be > 0";
   else if ((task == ValidationTask::kReconstruction) != (missing != MissingPart::kNone)) {
-    *why = "missing joints go with reconstruction, and reconstruction needs them";
-  } else if (task == ValidationTask::kFiltering && !(noise > 0)) *why = "filtering needs a noise level > 0";
-  else if (task != ValidationTask::kFiltering && noise != 0) *why = "noise goes with filtering";
-  else if (draws < 1) *why = "draws must be >= 1";
-  else return true;
-  return false;
+    problem = "missing joints go with reconstruction, and reconstruction needs them";
+  } else if (task == ValidationTask::kFiltering && !(noise > 0)) problem = "filtering needs a noise level > 0";
+  else if (task != ValidationTask::kFiltering && noise != 0) problem = "noise goes with filtering";
+  else if (draws < 1) problem = "draws must be >= 1";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
 }
 
 std::string ValidationCase::Label() const {
@@ -168,23 +178,40 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   // errors[i * draws + k]: trial i, draw k. Workers take trials by index, so the result is
   // the same for any number of threads.
   std::vector<double> errors(static_cast<size_t>(n) * draws);
-  std::vector<std::string> failures(n);
+  std::vector<char> failed(errors.size(), 0);
+  // Any exception in a worker is carried to this thread and rethrown there (the first
+  // trial's, so which one is reported does not depend on the thread count); an escaping
+  // exception would end the process.
+  std::vector<std::exception_ptr> failures(n);
   auto work = [&](int worker, int workers) {
     for (int i = worker; i < n; i += workers) {
       try {
-        for (int k = 0; k < draws; ++k) errors[i * draws + k] = TrialError(model, trials[i], i, c, k + 1, inference);
-      } catch (const InputError& e) {
-        failures[i] = e.what();
+        for (int k = 0; k < draws; ++k) {
+          const TrialOutcome outcome = TrialError(model, trials[i], i, c, k + 1, inference);
+          errors[i * draws + k] = outcome.error_mm;
+          failed[i * draws + k] = outcome.failed;
+        }
+      } catch (...) {
+        failures[i] = std::current_exception();
       }
     }
   };
   const int workers = std::max(1, std::min(threads, n));
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w, workers);
-  work(0, workers);
-  for (std::thread& t : pool) t.join();
+  {
+    // The trials run in parallel, so each keeps to one BLAS thread.
+    const LinearAlgebraThreadScope one_blas_thread(1);
+    std::vector<std::thread> pool;
+    for (int w = 1; w < workers; ++w) pool.emplace_back(work, w, workers);
+    work(0, workers);
+    for (std::thread& t : pool) t.join();
+  }
   for (int i = 0; i < n; ++i) {
-    if (!failures[i].empty()) ThrowInputError("trial " + trials[i].id, failures[i]);
+    if (!failures[i]) continue;
+    try {
+      std::rethrow_exception(failures[i]);
+    } catch (const InputError& e) {
+      ThrowInputError("trial " + trials[i].id, e.what());
+    }  // anything else propagates as it is
   }
 
   ValidationResult result;
@@ -194,6 +221,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
     result.trial_errors_mm.push_back(Mean(std::vector<double>(errors.begin() + i * draws, errors.begin() + (i + 1) * draws)));
   }
   result.mean_error_mm = Mean(result.trial_errors_mm);
+  result.inference_failures = static_cast<int>(std::count(failed.begin(), failed.end(), 1));
   if (c.task == ValidationTask::kFiltering) {
     for (int k = 0; k < draws; ++k) {
       double sum = 0;
@@ -206,6 +234,25 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+std::vector<ModelResults> ValidateSuite(
+    const std::vector<const GaitModel*>& models, const std::vector<std::string>& model_names,
+    const GaitDataset& dataset, const std::vector<ValidationCase>& cases, int threads,
+    const std::function<void(const ModelResults&, size_t done, size_t total)>& progress) {
+  JGPM_CHECK(models.size() == model_names.size());
+  std::vector<ModelResults> suite;
+  const size_t total = models.size() * cases.size();
+  for (size_t m = 0; m < models.size(); ++m) {
+    const std::vector<ValidationTrial> trials = LoadValidationTrials(dataset, *models[m]);
+    ModelResults results{model_names[m], {}};
+    for (const ValidationCase& c : cases) {
+      results.results.push_back(Validate(*models[m], trials, c, InferenceOptions{}, threads));
+      if (progress) progress(results, m * cases.size() + results.results.size(), total);
+    }
+    suite.push_back(std::move(results));
+  }
+  return suite;
 }
 
 double MeanJointErrorMm(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,

@@ -7,6 +7,7 @@
 // skeleton.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -62,13 +63,32 @@ struct ValidationResult {
   std::vector<double> draw_errors_mm;   // filtering: mean over the trials, per draw
   double mean_error_mm = 0;
   double std_error_mm = 0;              // filtering: over the draws; else over the trials
+  // Inferences (trials x draws) that ended in a numerical failure: their errors are those
+  // of the last latent points Levenberg-Marquardt could evaluate.
+  int inference_failures = 0;
   double seconds = 0;
 };
 
 // Runs one case on every trial, on `threads` threads (the result does not depend on it).
+// The OpenBLAS thread count is one while the trials run, and restored after. InputError
+// when a trial's inference gives non-finite poses; any other exception of a worker is
+// rethrown here.
 ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTrial>& trials,
                           const ValidationCase& validation_case, const InferenceOptions& inference = {},
                           int threads = 1);
+
+// A model's results on several cases.
+struct ModelResults {
+  std::string model;  // a name for tables and legends, e.g. the file's stem
+  std::vector<ValidationResult> results;
+};
+
+// Runs every case on every model (each on `threads` threads); `progress` (may be empty)
+// gets each result with the number of results done and their total.
+std::vector<ModelResults> ValidateSuite(
+    const std::vector<const GaitModel*>& models, const std::vector<std::string>& model_names,
+    const GaitDataset& dataset, const std::vector<ValidationCase>& cases, int threads,
+    const std::function<void(const ModelResults&, size_t done, size_t total)>& progress = {});
 
 // Mean over poses and the 17 measured joints of the distance (mm) between the joints of
 // `estimated` and `truth` (both T x D, degrees) on one skeleton.

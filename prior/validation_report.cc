@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
+#include "io/json_file.h"
 #include "prior/png_file.h"
 
 namespace jgpm {
@@ -75,8 +76,8 @@ void DrawPanel(cv::Mat& image, const cv::Rect& area, const Panel& panel, double 
 }
 
 // A chart of `panels` side by side with a legend of the models underneath.
-void WriteChart(const std::vector<Panel>& panels, const std::vector<std::string>& models, const std::string& title,
-                bool whiskers, const std::filesystem::path& path) {
+cv::Mat Chart(const std::vector<Panel>& panels, const std::vector<std::string>& models, const std::string& title,
+              bool whiskers) {
   double top = 1;
   for (const Panel& p : panels) {
     for (const auto& row : p.bars) {
@@ -102,7 +103,7 @@ void WriteChart(const std::vector<Panel>& panels, const std::vector<std::string>
     cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(static_cast<int>(m)), cv::FILLED);
     Text(image, models[m], {at.x + 20, at.y}, 0.45);
   }
-  WritePngFile(path, image);
+  return image;
 }
 
 }  // namespace
@@ -121,6 +122,7 @@ nlohmann::json ValidationResultJson(const ValidationResult& r) {
   }
   j["mean_error_mm"] = r.mean_error_mm;
   j["std_error_mm"] = r.std_error_mm;
+  j["inference_failures"] = r.inference_failures;
   nlohmann::json trials = nlohmann::json::array();
   for (size_t i = 0; i < r.trials.size(); ++i) trials.push_back({{"trial", r.trials[i]}, {"error_mm", r.trial_errors_mm[i]}});
   j["trials"] = trials;
@@ -142,7 +144,7 @@ std::string SuiteCsv(const std::vector<ModelResults>& suite) {
   return csv;
 }
 
-std::vector<std::filesystem::path> PlotSuite(const std::vector<ModelResults>& suite, const std::filesystem::path& folder) {
+void PlotSuite(const std::vector<ModelResults>& suite, const std::filesystem::path& folder, OutputBatch* batch) {
   std::vector<std::string> models;
   for (const ModelResults& m : suite) models.push_back(m.model);
   // Panels keyed by (task, condition), groups by scale in descending order as in the paper.
@@ -178,7 +180,6 @@ std::vector<std::filesystem::path> PlotSuite(const std::vector<ModelResults>& su
       p.bars[m][g] = &r;
     }
   }
-  std::vector<std::filesystem::path> written;
   const struct {
     ValidationTask task;
     const char* file;
@@ -195,10 +196,40 @@ std::vector<std::filesystem::path> PlotSuite(const std::vector<ModelResults>& su
     }
     if (selected.empty()) continue;
     const std::filesystem::path path = folder / chart.file;
-    WriteChart(selected, models, chart.title, chart.task == ValidationTask::kFiltering, path);
-    written.push_back(path);
+    batch->Add(path, EncodePng(Chart(selected, models, chart.title, chart.task == ValidationTask::kFiltering),
+                               path.string()));
   }
-  return written;
+}
+
+std::vector<std::filesystem::path> WriteValidationOutputs(const std::vector<ModelResults>& suite,
+                                                          const std::vector<std::string>& model_paths,
+                                                          const std::string& split,
+                                                          const std::filesystem::path& json,
+                                                          const std::filesystem::path& folder,
+                                                          const std::string& csv_name) {
+  JGPM_CHECK(suite.size() == model_paths.size());
+  OutputBatch batch;
+  if (!json.empty()) {
+    nlohmann::json j;
+    if (suite.size() == 1 && suite[0].results.size() == 1) {
+      j = ValidationResultJson(suite[0].results[0]);  // one case: its fields at the top
+      j["model"] = model_paths[0];
+    } else {
+      j["models"] = nlohmann::json::array();
+      for (size_t m = 0; m < suite.size(); ++m) {
+        nlohmann::json results = nlohmann::json::array();
+        for (const ValidationResult& r : suite[m].results) results.push_back(ValidationResultJson(r));
+        j["models"].push_back({{"model", model_paths[m]}, {"results", results}});
+      }
+    }
+    j["split"] = split;
+    batch.Add(json, FormatJson(j));
+  }
+  if (!folder.empty()) {
+    batch.Add(folder / csv_name, SuiteCsv(suite));
+    PlotSuite(suite, folder, &batch);
+  }
+  return batch.Commit();
 }
 
 }  // namespace jgpm

@@ -10,23 +10,30 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/output_batch.h"
 #include "prior/validation.h"
 
 namespace jgpm {
-
-struct ModelResults {
-  std::string model;  // a name for tables and legends, e.g. the file's stem
-  std::vector<ValidationResult> results;
-};
 
 nlohmann::json ValidationResultJson(const ValidationResult& result);
 
 // Columns: model, task, missing, noise, scale, mean_error_mm, std_error_mm, trials, seconds.
 std::string SuiteCsv(const std::vector<ModelResults>& suite);
 
-// Writes interpolation.png, reconstruction.png and filtering.png into `folder` for the
-// tasks present; returns the paths written. InputError if a file cannot be written.
-std::vector<std::filesystem::path> PlotSuite(const std::vector<ModelResults>& suite,
-                                             const std::filesystem::path& folder);
+// Adds interpolation.png, reconstruction.png and filtering.png in `folder` to `batch`, for
+// the tasks present.
+void PlotSuite(const std::vector<ModelResults>& suite, const std::filesystem::path& folder, OutputBatch* batch);
+
+// What `jgpm eval` writes, all files or none (InputError if one cannot be written; nothing
+// is then left): with `json`, the results as JSON (one model and case: its fields at the
+// top level and "model"; else "models": [{model, results}]), with "split"; with `folder`,
+// `csv_name` (SuiteCsv) and the charts. `model_paths` name the models as the user gave
+// them. Returns the files written.
+std::vector<std::filesystem::path> WriteValidationOutputs(const std::vector<ModelResults>& suite,
+                                                          const std::vector<std::string>& model_paths,
+                                                          const std::string& split,
+                                                          const std::filesystem::path& json,
+                                                          const std::filesystem::path& folder,
+                                                          const std::string& csv_name);
 
 }  // namespace jgpm

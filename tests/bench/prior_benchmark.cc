@@ -9,7 +9,7 @@
 #include "io/data_root.h"
 #include "io/gait_dataset.h"
 #include "io/text_reader.h"
-#include "prior/cholesky.h"
+#include "prior/blas_threads.h"
 #include "prior/rbf_row.h"
 #include "prior/train.h"
 #include "test_support.h"
@@ -19,7 +19,7 @@ namespace {
 
 const GaitModel& Model() {
   static const std::unique_ptr<GaitModel> model = [] {
-    SetLinearAlgebraThreads(1);
+    static const LinearAlgebraThreadScope one_thread(1);  // per-call costs on one core
     const GaitDataset dataset =
         PrepareGaitDataset(test::CmuRoot(), "train", test::SplitTrials("train"), GaitCycleOptions{});
     TrainingOptions options;

@@ -28,7 +28,7 @@ TEST(RenderCli, RendersAShortClipWithTheDefaultRig) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("rendered 6 frames"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("cam1: f "), std::string::npos) << r.out;
-  EXPECT_NE(r.err.find("100%"), std::string::npos) << r.err;  // progress
+  EXPECT_EQ(r.err, "");  // a job this short shows no progress in a log
   const nlohmann::json truth = ReadJsonFile(out / "ground_truth.json", "truth");
   EXPECT_EQ(truth["frames"].size(), 6u);
   EXPECT_EQ(truth["degradations"]["clutter_blobs"], 2);

@@ -144,7 +144,12 @@ INSTANTIATE_TEST_SUITE_P(
         MalformedCase{"GarbageInHeader", ":DEGREES\n", ":DEGREES\nhello\n", "hello", "expected :FULLY-SPECIFIED"},
         MalformedCase{"MissingBoneInFrame", "shin 30\n", "", "2\nspine", "frame 1 (started at line 4) lacks 1 bone(s): shin"},
         MalformedCase{"RepeatedBone", "shin 30\n", "shin 30\nshin 30\n", "shin 30\nspine", "appears twice"},
-        MalformedCase{"SkippedFrameNumber", "2\nspine", "3\nspine", "3\nspine", "expected frame number 2"}),
+        MalformedCase{"SkippedFrameNumber", "2\nspine", "3\nspine", "3\nspine", "expected frame number 2"},
+        // The next number after INT_MAX overflowed an int (undefined behaviour), and a
+        // number past an int was taken for a bone's name.
+        MalformedCase{"FirstFrameNumberAtIntMax", "1\nroot", "2147483647\nroot", "2147483647", "is out of range"},
+        MalformedCase{"FrameNumberPastAnInt", "2\nspine", "2147483648\nspine", "2147483648",
+                      "expected frame number 2, found 2147483648"}),
     test::CaseName);
 
 }  // namespace

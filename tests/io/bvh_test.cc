@@ -1,10 +1,23 @@
 #include "io/bvh.h"
 
+// This program replaces operator new (to see its largest allocation) with malloc and free;
+// GCC cannot tell that the pair matches.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
 #include <gtest/gtest.h>
 
 #include "test_support.h"
 
 namespace jgpm {
+namespace test {
+std::atomic<size_t> largest_allocation{0};
+}  // namespace test
 namespace {
 
 using test::ExpectInputError;
@@ -167,6 +180,23 @@ TEST(Bvh, EmptyFileAndDirectory) {
   ExpectInputError([&] { ReadBvh(dir.path()); }, {"is a directory"});
 }
 
+// A 100 KB header with thousands of channels and a huge declared frame count: the parser
+// must not ask for memory the file cannot fill (it reserved frames x channels doubles,
+// gigabytes, before reading a single frame).
+TEST(Bvh, MemoryIsBoundedByWhatTheFileHolds) {
+  std::string text = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n";
+  const int joints = 3000;
+  for (int i = 0; i < joints; ++i) {
+    text += "JOINT j" + std::to_string(i) + "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n}\n";
+  }
+  text += "}\nMOTION\nFrames: 100000\nFrame Time: 0.01\n";
+  for (int c = 0; c < 3 * (joints + 1); ++c) text += "0 ";
+  text += "\n";
+  test::largest_allocation = 0;
+  ExpectInputError([&] { ParseBvh(text, "wide.bvh"); }, {"file ends after 1 of 100000 frames"});
+  EXPECT_LT(test::largest_allocation.load(), 16 * text.size()) << "for a file of " << text.size() << " bytes";
+}
+
 TEST(Bvh, DeepNestingDoesNotOverflowTheStack) {
   std::string text = "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 0\n";
   const int depth = 100000;
@@ -177,3 +207,14 @@ TEST(Bvh, DeepNestingDoesNotOverflowTheStack) {
 
 }  // namespace
 }  // namespace jgpm
+
+// The largest single allocation of this test program, for the memory bound above.
+void* operator new(std::size_t size) {
+  size_t seen = jgpm::test::largest_allocation.load();
+  while (size > seen && !jgpm::test::largest_allocation.compare_exchange_weak(seen, size)) {
+  }
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }

@@ -7,6 +7,7 @@
 
 #include "io/amc.h"
 #include "io/asf.h"
+#include "io/text_reader.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -115,6 +116,28 @@ TEST_F(GaitCycleTest, OptionsCheck) {
   o.max_cycle_s = 0.5;
   EXPECT_FALSE(o.Check(&why));
   EXPECT_NE(why.find("min_cycle_s"), std::string::npos);
+  EXPECT_FALSE(o.Check(nullptr));  // `why` may be null
+}
+
+// GaitPoseLayout takes a skeleton whose femurs turn only about y and z; finding the stride
+// needs their flexion (rx): an InputError naming the skeleton, not an abort.
+TEST(GaitCycle, ThighsWithoutFlexionAreRefusedNamingTheSkeleton) {
+  std::string asf = ReadTextFile(test::CmuRoot() / "subjects/07/07.asf", "asf");
+  const std::string femur = "name lfemur";
+  const size_t at = asf.find(femur);
+  ASSERT_NE(at, std::string::npos);
+  const size_t dof = asf.find("dof rx ry rz", at);
+  const size_t limits = asf.find("limits (-160.0 20.0)", at);
+  const size_t second = asf.find("(-70.0 70.0)", limits);
+  ASSERT_NE(dof, std::string::npos);
+  ASSERT_NE(second, std::string::npos);
+  asf.replace(limits, second + std::string("(-70.0 70.0)").size() - limits, "limits (-70.0 70.0)");  // drop rx's
+  asf.replace(dof, std::string("dof rx ry rz").size(), "dof ry rz");
+  const Skeleton skeleton = ParseAsf(asf, "no_flexion.asf");
+  const GaitPoseLayout layout(skeleton, "no_flexion.asf");
+  Motion walk;
+  walk.values = RowMatrixXd::Zero(400, skeleton.NumChannels());
+  test::ExpectInputError([&] { ExtractGaitCycle(layout, walk); }, {"no_flexion.asf", "lfemur.rx"});
 }
 
 // Every walking trial: a clean cycle of a normal length; non-walking trials are flagged.

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <random>
 
+#include <atomic>
+#include <thread>
+
 #include <gtest/gtest.h>
 
 #include "io/error.h"
@@ -98,7 +101,46 @@ TEST(WriteFileAtomic, WritesAndReplaces) {
   WriteFileAtomic(path, "first");
   WriteFileAtomic(path, "second");
   EXPECT_EQ(ReadTextFile(path, "text"), "second");
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out.txt.tmp-jgpm"));
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);  // no temporary left
+  // A new file gets the permissions the umask allows, not mkstemp's private 0600.
+  const auto perms = std::filesystem::status(path).permissions();
+  EXPECT_NE(perms & std::filesystem::perms::others_read, std::filesystem::perms::none);
+}
+
+// Two writers of one file (two jgpm runs, or two threads) must not share a temporary: each
+// write lands whole, and neither fails. With one fixed temporary name, one writer's rename
+// took the other's half-written file or failed to find its own.
+TEST(WriteFileAtomic, ConcurrentWritersNeverMixOrFail) {
+  TempDir dir;
+  const auto path = dir.path() / "shared.txt";
+  const std::string a(200000, 'a'), b(300000, 'b');
+  std::atomic<int> failures{0};
+  auto writer = [&](const std::string& text) {
+    for (int i = 0; i < 40; ++i) {
+      try {
+        WriteFileAtomic(path, text);
+      } catch (const InputError&) {
+        ++failures;
+      }
+    }
+  };
+  std::thread first(writer, std::cref(a)), second(writer, std::cref(b));
+  for (int i = 0; i < 80; ++i) {
+    std::string seen;
+    try {
+      seen = ReadTextFile(path, "text");
+    } catch (const InputError&) {
+      continue;  // not written yet
+    }
+    EXPECT_TRUE(seen == a || seen == b) << "a mixed file of " << seen.size() << " bytes";
+  }
+  first.join();
+  second.join();
+  EXPECT_EQ(failures.load(), 0);
+  const std::string last = ReadTextFile(path, "text");
+  EXPECT_TRUE(last == a || last == b);
 }
 
 TEST(WriteFileAtomic, MissingFolderIsAnErrorAndLeavesNothing) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -69,8 +70,8 @@ TEST(GaitOrder, LargeInstancesUseTheHeuristicAndStayValid) {
   Eigen::MatrixXd points(n, 2);
   std::vector<int> shuffled(n);
   std::iota(shuffled.begin(), shuffled.end(), 0);
-  std::srand(3);
-  std::random_shuffle(shuffled.begin(), shuffled.end());
+  std::mt19937 random(3);  // (std::random_shuffle is gone from C++17)
+  std::shuffle(shuffled.begin(), shuffled.end(), random);
   for (int i = 0; i < n; ++i) {
     const double a = 6.283185307179586 * shuffled[i] / n;
     points.row(i) << std::cos(a), std::sin(a);

@@ -2,6 +2,7 @@
 // finite differences, and recovery of sequences the model knows, from partial or noisy
 // observations, against the poses that generated them.
 #include "prior/inference.h"
+#include "prior/pca_gait_model.h"
 
 #include <random>
 
@@ -125,6 +126,31 @@ TEST(Inference, FiltersNoise) {
   EXPECT_LT(MeanAbsDeg(r.poses_deg, truth), 0.5 * MeanAbsDeg(observations.poses_deg, truth));
 }
 
+// A model whose predictions are not finite: Levenberg-Marquardt cannot take a step, and
+// the result says so instead of passing NaN on.
+class NanModel : public PcaGaitModel {
+ public:
+  using PcaGaitModel::MeanPoses;
+  using PcaGaitModel::PcaGaitModel;
+  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, std::array<Eigen::MatrixXd, 3>* jacobians) const override {
+    Eigen::MatrixXd poses = PcaGaitModel::MeanPoses(xs, jacobians);
+    poses(0, 0) = std::nan("");
+    return poses;
+  }
+};
+
+TEST(Inference, ReportsHowTheSolverEnded) {
+  const auto pca = test::TrainOnSyntheticWalks(ModelKind::kPca);
+  PoseObservations o;
+  o.poses_deg = test::SyntheticWalks(1, 10).trials[0].cycle.poses;
+  const InferenceResult good = InferLatentSequence(*pca, o);
+  EXPECT_NE(good.termination, Termination::kNumericalFailure) << good.message;
+  const NanModel nan_model(pca->data(), "nan");
+  const InferenceResult bad = InferLatentSequence(nan_model, o);
+  EXPECT_EQ(bad.termination, Termination::kNumericalFailure);
+  EXPECT_FALSE(bad.message.empty());
+}
+
 TEST(Inference, BadInput) {
   const auto model = test::TrainOnSyntheticWalks(ModelKind::kPca);
   const int d = model->NumChannels();
@@ -145,6 +171,7 @@ TEST(Inference, BadInput) {
   bad.observation_noise_deg = 0;
   o.noise_std_deg.resize(0);
   ExpectInputError([&] { InferLatentSequence(*model, o, bad); }, {"inference options", "observation_noise_deg"});
+  EXPECT_FALSE(bad.Check(nullptr));  // `why` may be null
 }
 
 }  // namespace

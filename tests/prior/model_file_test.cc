@@ -1,5 +1,7 @@
 #include "prior/model_file.h"
 
+#include <functional>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -79,17 +81,58 @@ TEST_F(ModelFileErrors, NotAModel) {
   ExpectInputError([] { ReadModelFile("/nonexistent/m.json"); }, {"m.json", "no such file"});
 }
 
-TEST_F(ModelFileErrors, InconsistentContentWithAValidChecksum) {
-  // Someone edits the file and recomputes nothing but the checksum: the sizes are checked.
-  nlohmann::json j = nlohmann::json::parse(*text_);
-  j["model"]["latent"].erase(0);
+// The file as another tool (or version) might write it: edited, with a matching checksum.
+std::string WithChecksum(nlohmann::json j) {
   const std::string model_dump = j["model"].dump();
   uint64_t hash = 1469598103934665603ull;  // FNV-1a 64, as the writer computes it
   for (unsigned char c : model_dump) hash = (hash ^ c) * 1099511628211ull;
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
   j["checksum"] = hex;
-  ExpectInputError([&] { ParseModelFile(j.dump(), "m.json"); }, {"m.json", "latent points must be"});
+  return j.dump();
+}
+
+TEST_F(ModelFileErrors, InconsistentContentWithAValidChecksum) {
+  // Someone edits the file and recomputes nothing but the checksum: the sizes are checked.
+  nlohmann::json j = nlohmann::json::parse(*text_);
+  j["model"]["latent"].erase(0);
+  ExpectInputError([&] { ParseModelFile(WithChecksum(j), "m.json"); }, {"m.json", "latent points must be"});
+}
+
+// Each of these aborted the process or was accepted and used as an index before.
+TEST_F(ModelFileErrors, NoEditCanAbortTheProcess) {
+  const nlohmann::json valid = nlohmann::json::parse(*text_);
+  struct Edit {
+    std::string name;
+    std::function<void(nlohmann::json&)> apply;
+    std::string phrase;
+  };
+  const std::vector<Edit> edits = {
+      {"two mapping hyper-parameters", [](nlohmann::json& m) { m["log_beta"].erase(0); },
+       "mapping kernel needs 3 finite log hyper-parameters"},
+      {"a joint index past the 18 gait joints", [](nlohmann::json& m) { m["channel_joints"][4] = 99; },
+       "channel_joints differ"},
+      {"a negative joint index", [](nlohmann::json& m) { m["channel_joints"][0] = -1; }, "channel_joints differ"},
+      {"a zero layer scale", [](nlohmann::json& m) { m["layer_scales"][0] = 0.0; }, "layer scales must be"},
+      {"poses per gait past int", [](nlohmann::json& m) { m["poses_per_gait"] = 2147483647; }, "training points"},
+      {"an odd cross-layer count", [](nlohmann::json& m) { m["topology"]["cross_layer_neighbours"] = 5; },
+       "cross_layer_neighbours"},
+      {"an unknown termination", [](nlohmann::json& m) { m["summary"]["termination"] = "done"; },
+       "termination"},
+  };
+  for (const Edit& edit : edits) {
+    SCOPED_TRACE(edit.name);
+    nlohmann::json j = valid;
+    edit.apply(j["model"]);
+    ExpectInputError([&] { ParseModelFile(WithChecksum(j), "m.json"); }, {"m.json", edit.phrase});
+  }
+  // A number past the range of a double is not a JSON number we can read: InputError, not
+  // the JSON library's own exception.
+  std::string text = WithChecksum(valid);
+  const size_t at = text.find("\"layer_scales\":[");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + std::string("\"layer_scales\":[").size(), "1e999,");
+  ExpectInputError([&] { ParseModelFile(text, "m.json"); }, {"m.json", "number overflow"});
 }
 
 }  // namespace

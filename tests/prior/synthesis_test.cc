@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/amc.h"
 #include "io/asf.h"
@@ -130,12 +131,27 @@ TEST(Synthesis, FeetAlternateAndOuterStridesAreLonger) {
 TEST(Synthesis, StickFiguresAndBvh) {
   test::TempDir dir;
   const Motion motion = PosesToMotion(Model(), Synthesise(Model(), SynthesisPath::kOuterSpiral).poses_deg, 30);
-  PlotStickFigures(Model(), motion, dir.path() / "strip.png");
-  EXPECT_GT(fs::file_size(dir.path() / "strip.png"), 5000u);
-  WriteSynthesis(Model(), motion, dir.path() / "walk.bvh");
+  const std::vector<fs::path> written = WriteSynthesis(Model(), motion, dir.path() / "walk.bvh", dir.path() / "strip.png");
+  ASSERT_EQ(written.size(), 2u);
+  // 12 figures of 150 px side by side; each figure draws dark pixels (its bones).
+  const cv::Mat strip = cv::imread((dir.path() / "strip.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(strip.cols, 12 * 150);
+  for (int f = 0; f < 12; ++f) {
+    EXPECT_GT(cv::countNonZero(strip(cv::Rect(f * 150, 0, 150, 260)) < 100), 100) << "figure " << f;
+  }
   const Bvh bvh = ReadBvh(dir.path() / "walk.bvh");
   EXPECT_EQ(bvh.frames.rows(), 120);
   ExpectInputError([&] { WriteSynthesis(Model(), motion, dir.path() / "walk.fbx"); }, {"walk.fbx", ".amc or .bvh"});
+}
+
+// The motion and its picture appear together or not at all: a picture that cannot be
+// written (its folder is missing) leaves no motion behind either.
+TEST(Synthesis, AllFilesOrNone) {
+  test::TempDir dir;
+  const Motion motion = PosesToMotion(Model(), Synthesise(Model(), SynthesisPath::kLine).poses_deg, 30);
+  ExpectInputError([&] { WriteSynthesis(Model(), motion, dir.path() / "walk.amc", dir.path() / "no" / "strip.png"); },
+                   {"strip.png", "does not exist"});
+  EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
 TEST(Synthesis, BadInput) {

@@ -128,6 +128,12 @@ TEST(Topology, BadOptions) {
   TopologyOptions options;
   options.gait_radius = 1.2;  // inside the outer layer's radius 1.25
   EXPECT_THROW(MakeTopology(set, options), InputError);
+  // An odd cross-layer count cannot be split evenly between the middle layer's two
+  // neighbours, so points would have different neighbour counts: refused, not an abort.
+  TopologyOptions odd;
+  odd.cross_layer_neighbours = 5;
+  EXPECT_FALSE(odd.Check(nullptr));  // `why` may be null
+  test::ExpectInputError([&] { MakeTopology(set, odd); }, {"cross_layer_neighbours must be even"});
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "prior/cholesky.h"
+#include "prior/blas_threads.h"
 #include "prior/full_trainer.h"
 #include "prior/local_trainer.h"
 #include "prior/model_kind.h"
@@ -54,7 +54,7 @@ TEST(FullTrainer, ConvergesAndReports) {
   };
   GpParameters x = p.start;
   const TrainingSummary s = TrainFull(*p.objective, &x, options);
-  EXPECT_EQ(s.termination, "converged") << s.BriefReport();
+  EXPECT_EQ(s.termination, Termination::kConverged) << s.BriefReport();
   EXPECT_LT(s.final_objective, s.initial_objective);
   EXPECT_NEAR(s.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(s.final_objective));
   EXPECT_GT(calls, 1);
@@ -71,7 +71,7 @@ TEST(FullTrainer, PlateauWindowStopsEarly) {
   options.plateau_tolerance = 10.0;  // any progress below 10 |f| in 5 iterations counts as a plateau
   GpParameters x = p.start;
   const TrainingSummary s = TrainFull(*p.objective, &x, options);
-  EXPECT_EQ(s.termination, "converged");
+  EXPECT_EQ(s.termination, Termination::kConverged);
   EXPECT_EQ(s.iterations, 5);
 }
 
@@ -81,8 +81,23 @@ TEST(FullTrainer, NonFiniteDataIsANumericalFailure) {
   x.log_alpha.resize(0);
   x.log_w.resize(0);
   const TrainingSummary s = TrainFull(*p.objective, &x, FullTrainingOptions{});
-  EXPECT_EQ(s.termination, "numerical failure");
+  EXPECT_EQ(s.termination, Termination::kNumericalFailure);
   EXPECT_FALSE(s.usable());
+}
+
+TEST(TrainingOptions, ChecksAcceptANullWhy) {
+  LocalTrainingOptions local;
+  local.neighbourhood_size = 2;
+  EXPECT_FALSE(local.Check(nullptr));
+  TrainingOptions options;
+  options.threads = -1;
+  EXPECT_FALSE(options.Check(nullptr));
+  options.threads = 0;
+  options.local = local;
+  EXPECT_FALSE(options.Check(nullptr));
+  std::string why;
+  EXPECT_FALSE(options.Check(&why));
+  EXPECT_NE(why.find("neighbourhood_size"), std::string::npos) << why;
 }
 
 TEST(LocalTrainer, ImprovesDeterministicallyAndReports) {
@@ -118,16 +133,19 @@ TEST(LocalTrainer, StepDecaySettlesLower) {
   options.max_neighbourhood_fraction = 0.3;
   const auto neighbourhoods =
       LocalNeighbourhoods(p.set, p.topology.coordinates, LocalNeighbourhoodSize(p.set.NumPoints(), options));
-  SetLinearAlgebraThreads(2);
   GpParameters decayed = p.start;
-  const TrainingSummary s = TrainLocal(*p.objective, neighbourhoods, &decayed, options);
-  EXPECT_EQ(s.termination, "converged") << s.BriefReport();
-  EXPECT_EQ(LinearAlgebraThreads(), 2);
-
-  SetLinearAlgebraThreads(1);
-  GpParameters again = p.start;
-  TrainLocal(*p.objective, neighbourhoods, &again, options);
-  EXPECT_EQ(again.x, decayed.x);
+  {
+    const LinearAlgebraThreadScope two(2);
+    const TrainingSummary s = TrainLocal(*p.objective, neighbourhoods, &decayed, options);
+    EXPECT_EQ(s.termination, Termination::kConverged) << s.BriefReport();
+    EXPECT_EQ(LinearAlgebraThreads(), 2);
+  }
+  {
+    const LinearAlgebraThreadScope one(1);
+    GpParameters again = p.start;
+    TrainLocal(*p.objective, neighbourhoods, &again, options);
+    EXPECT_EQ(again.x, decayed.x);
+  }
 
   double sum_decayed = 0.0, sum_constant = 0.0;
   for (uint64_t seed = 1; seed <= 5; ++seed) {
@@ -162,7 +180,7 @@ TEST(TrainingBudget, StopsBothTrainersAndKeepsTheParameters) {
     full.budget = budget;
     GpParameters x = p.start;
     const TrainingSummary f = TrainFull(*p.objective, &x, full);
-    EXPECT_EQ(f.termination, "stopped") << f.BriefReport();
+    EXPECT_EQ(f.termination, Termination::kStopped) << f.BriefReport();
     EXPECT_EQ(f.message, why);
     EXPECT_LE(f.iterations, 1);
     EXPECT_NEAR(f.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(f.final_objective));
@@ -174,7 +192,7 @@ TEST(TrainingBudget, StopsBothTrainersAndKeepsTheParameters) {
         LocalNeighbourhoods(p.set, p.topology.coordinates, LocalNeighbourhoodSize(p.set.NumPoints(), local));
     x = p.start;
     const TrainingSummary l = TrainLocal(*p.objective, neighbourhoods, &x, local);
-    EXPECT_EQ(l.termination, "stopped") << l.BriefReport();
+    EXPECT_EQ(l.termination, Termination::kStopped) << l.BriefReport();
     EXPECT_EQ(l.message, why);
     EXPECT_EQ(l.evaluations, 2);  // the starting point and the first check
     EXPECT_NEAR(l.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(l.final_objective));
@@ -210,5 +228,32 @@ TEST(LocalTrainer, NeighbourhoodsMatchBruteForce) {
   }
 }
 
+
+// A numerical failure part way through training is how training ended, not a bad input:
+// TrainGaitModel returns the best model found before it, its summary saying so. Hyper-
+// parameter steps of e^1000 overflow the kernel at the first step, so local learning's first
+// check fails and the starting parameters are the best. The caller's BLAS thread count is
+// the same afterwards.
+TEST(TrainGaitModel, NumericalFailureKeepsTheBestModelAndRestoresThreads) {
+  const int threads_before = LinearAlgebraThreads();
+  TrainingOptions options;
+  options.kind = ModelKind::kJgpm;
+  options.learning = Learning::kLocal;
+  options.threads = threads_before == 1 ? 2 : 1;
+  options.local.hyper_step = 1000;
+  options.local.max_neighbourhood_fraction = 0.5;
+  options.local.evaluation_interval = 20;
+  const GaitDataset walks = test::SyntheticWalks(4, 8);
+  std::unique_ptr<GaitModel> model;
+  ASSERT_NO_THROW(model = TrainGaitModel(walks, test::Skeleton35(), options));
+  const TrainingSummary& s = model->data().summary;
+  EXPECT_EQ(s.termination, Termination::kNumericalFailure) << s.BriefReport();
+  EXPECT_FALSE(s.usable());
+  EXPECT_EQ(s.final_objective, s.initial_objective);
+  EXPECT_NE(s.BriefReport().find("numerical failure ("), std::string::npos) << s.BriefReport();
+  // The model kept is the starting one: the topology prior's coordinates.
+  EXPECT_EQ(model->latent(), model->data().prior_coordinates);
+  EXPECT_EQ(LinearAlgebraThreads(), threads_before);
+}
 }  // namespace
 }  // namespace jgpm

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "io/split.h"
+#include "prior/blas_threads.h"
+#include "prior/pca_gait_model.h"
 #include "prior_test_support.h"
 
 namespace jgpm {
@@ -74,6 +76,7 @@ TEST(ValidationCase, PaperSuiteAndChecks) {
   EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, 1, MissingPart::kLeftArm}).Check(&why));
   EXPECT_FALSE((ValidationCase{ValidationTask::kFiltering, 1, MissingPart::kNone, 0}).Check(&why));
   EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, -1}).Check(&why));
+  EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, -1}).Check(nullptr));  // `why` may be null
   EXPECT_FALSE((ValidationCase{ValidationTask::kInterpolation, 1, MissingPart::kNone, 0.1}).Check(&why));
 }
 
@@ -127,6 +130,37 @@ TEST(Validate, TrainingCyclesComeBackAndHarderCasesCostMore) {
   EXPECT_GT(high.std_error_mm, 0.0);  // different draws, different errors
 
   ExpectInputError([&] { Validate(*model, trials, {ValidationTask::kFiltering, 1.0}); }, {"filtering", "noise"});
+}
+
+// A model whose every prediction fails the way an allocation can (not an InputError).
+class FailingModel : public PcaGaitModel {
+ public:
+  using PcaGaitModel::MeanPoses;
+  using PcaGaitModel::PcaGaitModel;
+  Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd&, std::array<Eigen::MatrixXd, 3>*) const override {
+    throw std::runtime_error("no memory for the kernel");
+  }
+};
+
+// Any exception in a worker reaches the caller (it ended the process in std::terminate),
+// and the OpenBLAS thread count the workers ran with is the caller's again afterwards.
+TEST(Validate, WorkerExceptionsReachTheCallerAndThreadsAreRestored) {
+  const auto pca = test::TrainOnSyntheticWalks(ModelKind::kPca);
+  const FailingModel model(pca->data(), "failing");
+  const auto kinematics = Kinematics35();
+  const GaitDataset walks = test::SyntheticWalks(4, 10);
+  std::vector<ValidationTrial> trials;
+  for (const GaitTrial& t : walks.trials) trials.push_back({t.id.name, t.cycle.poses, kinematics});
+  const LinearAlgebraThreadScope two(2);
+  try {
+    Validate(model, trials, {ValidationTask::kInterpolation, 1.0}, {}, 2);
+    ADD_FAILURE() << "expected the model's exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "no memory for the kernel");
+  }
+  EXPECT_EQ(LinearAlgebraThreads(), 2);
+  Validate(*pca, trials, {ValidationTask::kInterpolation, 1.0}, {}, 2);
+  EXPECT_EQ(LinearAlgebraThreads(), 2);
 }
 
 // The test split's clean cycles load with each subject's own skeleton.

@@ -8,11 +8,11 @@
 #include <memory>
 #include <optional>
 
-#include <unistd.h>
-
 #include "calibration/camera.h"
 #include "calibration/chessboard.h"
 #include "io/error.h"
+#include "io/image_list.h"
+#include "tracker/cli/progress.h"
 
 namespace jgpm::cli {
 namespace {
@@ -73,22 +73,6 @@ const CLI::Validator kPositiveMm(
     },
     "MM");
 
-const char* const kImageExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff"};
-
-// The images in `folder` (by extension, any case), sorted by name.
-std::vector<std::string> ImagesIn(const std::string& folder) {
-  std::vector<std::string> paths;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    if (!entry.is_regular_file()) continue;
-    std::string extension = entry.path().extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (std::find(std::begin(kImageExtensions), std::end(kImageExtensions), extension) != std::end(kImageExtensions))
-      paths.push_back(entry.path().string());
-  }
-  std::sort(paths.begin(), paths.end());
-  return paths;
-}
-
 std::string Distortion(const Camera& camera) {
   static const char* const names[] = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"};
   std::string out;
@@ -120,7 +104,8 @@ void RunCalibrate(const CalibrateArguments& a) {
   // Everything that can be checked before the slow part is.
   const fs::path out_folder = fs::path(a.out).parent_path();
   if (!out_folder.empty() && !fs::is_directory(out_folder)) ThrowInputError("--out " + a.out, "no such folder");
-  const std::vector<std::string> paths = ImagesIn(a.images);
+  std::vector<std::string> paths;
+  for (const fs::path& image : ListImages(a.images)) paths.push_back(image.string());
   if (paths.empty()) ThrowInputError("--images " + a.images, "no .png, .jpg, .jpeg, .bmp or .tif images in the folder");
   std::optional<CameraPose> pose;
   if (!a.pose.empty()) pose = ReadCameraPoseYaml(a.pose);
@@ -129,12 +114,10 @@ void RunCalibrate(const CalibrateArguments& a) {
   std::printf("calibrating from %zu images in %s: board %dx%d inner corners, %g mm squares\n", paths.size(),
               a.images.c_str(), options.cols, options.rows, options.square_mm);
   std::fflush(stdout);
-  if (isatty(fileno(stderr))) {
-    options.progress = [](int done, int total) {
-      std::fprintf(stderr, "\r[%d/%d] looking for the board   %s", done, total, done == total ? "\n" : "");
-    };
-  }
+  ProgressLine line("calibrate", 0.2);
+  options.progress = [&line](int done, int total) { line.Update(done, total, "images", "looking for the board"); };
   const CalibrationSummary summary = CalibrateFromImages(paths, options);
+  line.Finish();
   for (const CalibrationImage& image : summary.images) {
     const std::string name = fs::path(image.path).filename().string();
     if (image.used) {

@@ -1,18 +1,16 @@
 #include "tracker/cli/data_commands.h"
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
-
-#include <unistd.h>
 
 #include "io/data_root.h"
 #include "io/error.h"
 #include "io/gait_dataset.h"
 #include "io/motion_file.h"
 #include "io/split.h"
+#include "tracker/cli/progress.h"
 
 namespace jgpm::cli {
 namespace {
@@ -59,17 +57,12 @@ void RunCycles(const DataOptions& o) {
   const std::vector<TrialId> ids = ReadSplit(split_path);
   std::printf("data root %s, split %s (%zu trials)\n", root.string().c_str(),
               split_path.string().c_str(), ids.size());
-  const auto start = std::chrono::steady_clock::now();
-  const bool show_progress = isatty(fileno(stderr));
-  const GaitDataset dataset =
-      PrepareGaitDataset(root, o.split, ids, options, [&](int i, int n, const GaitTrial& trial) {
-        if (!show_progress) return;
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::fprintf(stderr, "\r[%d/%d] %-8s %5.1f trials/s, %4.1f s left   ", i + 1, n,
-                     trial.id.name.c_str(), (i + 1) / elapsed, elapsed / (i + 1) * (n - i - 1));
-        if (i + 1 == n) std::fprintf(stderr, "\n");
-      });
+  std::fflush(stdout);
+  ProgressLine line("cycles", 0.2);
+  const GaitDataset dataset = PrepareGaitDataset(root, o.split, ids, options, [&](int i, int n, const GaitTrial& trial) {
+    line.Update(i + 1, n, "trials", trial.id.name);
+  });
+  line.Finish();
   WriteGaitDataset(o.out, dataset);
   std::fputs(FormatGaitDatasetTable(dataset).c_str(), stdout);
   std::printf("wrote %s\n", o.out.c_str());

@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <memory>
 
-#include <unistd.h>
-
 #include "io/data_root.h"
 #include "io/error.h"
 #include "io/gait_dataset.h"
@@ -15,8 +13,10 @@
 #include "io/text_reader.h"
 #include "prior/latent_plot.h"
 #include "prior/model_file.h"
+#include "prior/model_report.h"
 #include "prior/synthesis.h"
 #include "prior/train.h"
+#include "tracker/cli/progress.h"
 
 namespace jgpm::cli {
 namespace {
@@ -30,7 +30,7 @@ struct TrainArguments {
   std::string learning = "full";
   uint64_t seed = 1;
   int threads = 0;
-  int max_iterations = 5000;
+  int max_iterations = 0;
   double max_time = 0;
   int neighbourhood = 0;
   double sigma2 = 0.01;
@@ -44,13 +44,6 @@ extern "C" void OnInterrupt(int signal) {
   std::signal(signal, SIG_DFL);
 }
 
-void PrintProgress(const TrainingProgress& p) {
-  std::fprintf(stderr, "%s %7d/%d  objective %.7g  jitter %.1g  %.2f it/s  %.0f s, <= %.0f s left%s",
-               p.stage.c_str(), p.iteration, p.max_iterations, p.objective, p.jitter, p.rate,
-               p.elapsed_seconds, p.seconds_left, isatty(fileno(stderr)) ? "   \r" : "\n");
-  std::fflush(stderr);
-}
-
 void RunTrain(const TrainArguments& a) {
   TrainingOptions options;
   if (!ParseModelKind(a.model, &options.kind)) {
@@ -60,42 +53,52 @@ void RunTrain(const TrainArguments& a) {
   options.seed = a.seed;
   options.threads = a.threads;
   options.topology_sigma2 = a.sigma2;
-  options.full.max_iterations = a.max_iterations;
+  if (a.max_iterations > 0) {  // L-BFGS iterations, or local steps
+    options.full.max_iterations = a.max_iterations;
+    options.local.max_steps = a.max_iterations;
+  }
   if (a.neighbourhood > 0) {  // explicit: exactly this many, not capped at 10% of N
     options.local.neighbourhood_size = a.neighbourhood;
     options.local.max_neighbourhood_fraction = 1.0;
   }
-  options.progress = PrintProgress;
+  ProgressLine line("train");
+  options.progress = [&line](const TrainingProgress& p) {
+    char detail[96];
+    std::snprintf(detail, sizeof(detail), "(%s)  objective %.7g  jitter %.1g", p.stage.c_str(), p.objective, p.jitter);
+    line.Update(p.iteration, p.max_iterations, p.stage == "local" ? "steps" : "iterations", detail);
+  };
   options.budget.max_seconds = a.max_time;
   options.budget.interrupted = &interrupted;
 
-  const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
+  // A prepared dataset brings its own data root (for the reference skeleton); --data
+  // overrides it.
+  const std::optional<std::string> data_flag = a.data.empty() ? std::nullopt : std::optional(a.data);
   GaitDataset dataset;
+  std::filesystem::path root;
   if (!a.dataset.empty()) {
     dataset = ReadGaitDataset(a.dataset);
+    root = data_flag ? ResolveDataRoot(data_flag) : std::filesystem::path(dataset.data_root);
   } else {
-    const std::filesystem::path split = ResolveSplitPath(a.split, JGPM_SPLITS_DIR);
-    dataset = PrepareGaitDataset(root, a.split, ReadSplit(split), GaitCycleOptions{});
+    root = ResolveDataRoot(data_flag);
+    dataset = PrepareGaitDataset(root, a.split, ReadSplit(ResolveSplitPath(a.split, JGPM_SPLITS_DIR)), GaitCycleOptions{});
   }
-  ReferenceSkeleton skeleton;
-  for (const GaitTrial& trial : dataset.trials) {
-    if (!trial.cycle.clean) continue;
-    skeleton.trial = trial.id.name;
-    skeleton.asf = ReadTextFile(root / trial.asf, "an ASF skeleton");
-    break;
-  }
-  if (skeleton.trial.empty()) ThrowInputError("--split " + a.split, "has no clean gait cycle");
-  std::printf("training %s (%s learning) on %d clean gait cycles of %s\n", a.model.c_str(),
-              a.learning.c_str(), dataset.NumClean(), dataset.split.c_str());
+  const ReferenceSkeleton skeleton = ChooseReferenceSkeleton(dataset, root);
+  std::printf("training %s (%s learning) on %d clean gait cycles of %s\n", a.model.c_str(), a.learning.c_str(),
+              dataset.NumClean(), dataset.split.c_str());
+  std::fflush(stdout);
   interrupted = false;
   std::signal(SIGINT, OnInterrupt);
   std::signal(SIGTERM, OnInterrupt);
   const std::unique_ptr<GaitModel> model = TrainGaitModel(dataset, skeleton, options);
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
-  if (isatty(fileno(stderr))) std::fputc('\n', stderr);
+  line.Finish();
   WriteModelFile(a.out, *model);
   std::printf("%swrote %s\n", DescribeModel(*model).c_str(), a.out.c_str());
+  if (!model->data().summary.usable()) {
+    std::fprintf(stderr, "jgpm: warning: training ended in a numerical failure (%s); the model written is the best "
+                 "found before it\n", model->data().summary.message.c_str());
+  }
 }
 
 struct SynthArguments {
@@ -114,11 +117,7 @@ void RunSynth(const SynthArguments& a) {
   const auto model = ReadModelFile(a.model);
   const SynthesisResult result = Synthesise(*model, path, a.options);
   const Motion motion = PosesToMotion(*model, result.poses_deg, a.options.frames_per_second);
-  for (const auto& file : WriteSynthesis(*model, motion, a.out)) std::printf("wrote %s\n", file.string().c_str());
-  if (!a.png.empty()) {
-    PlotStickFigures(*model, motion, a.png);
-    std::printf("wrote %s\n", a.png.c_str());
-  }
+  for (const auto& file : WriteSynthesis(*model, motion, a.out, a.png)) std::printf("wrote %s\n", file.string().c_str());
 }
 
 }  // namespace
@@ -138,9 +137,9 @@ void AddPriorCommands(CLI::App& app) {
   train->add_option("--threads", a->threads, "linear-algebra threads (0: all cores)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
-  train->add_option("--max-iterations", a->max_iterations, "full learning: L-BFGS iteration cap")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
+  train->add_option("--max-iterations", a->max_iterations,
+                    "L-BFGS iterations (full) or steps (local) at most (default: 5000 iterations, 5000000 steps)")
+      ->check(CLI::Range(1, 100000000));
   train->add_option("--neighbourhood", a->neighbourhood,
                     "local learning: points per neighbourhood (default: 120, at most 10% of N)")
       ->check(CLI::Range(4, 100000));

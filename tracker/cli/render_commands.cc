@@ -1,15 +1,13 @@
 #include "tracker/cli/render_commands.h"
 
-#include <chrono>
 #include <cstdio>
-
-#include <unistd.h>
 
 #include "calibration/camera.h"
 #include "io/amc.h"
 #include "io/asf.h"
 #include "io/error.h"
 #include "io/motion_file.h"
+#include "tracker/cli/progress.h"
 #include "tracker/synthetic_clip.h"
 
 namespace jgpm::cli {
@@ -41,21 +39,10 @@ void RunRender(const RenderArguments& a) {
   const Skeleton skeleton = ReadAsf(asf);
   Motion motion = ReadAmc(a.amc, skeleton);
   motion.frames_per_second = a.amc_fps;
-  const auto start = std::chrono::steady_clock::now();
-  const bool tty = isatty(fileno(stderr));
-  int last_percent = -1;
-  auto progress = [&](int done, int total) {
-    const int percent = 100 * done / total;
-    if (percent / 10 == last_percent / 10 && done != total) return;
-    last_percent = percent;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "render %3d%%  %d/%d images  %.0f images/s  %.0f s left%s", percent, done,
-                 total, done / std::max(elapsed, 1e-9), elapsed / done * (total - done), tty ? "   \r" : "\n");
-    std::fflush(stderr);
-  };
-  const ClipSummary summary =
-      RenderClip(skeleton, motion, {asf.string(), a.amc}, cameras, a.clip, a.out, progress);
-  if (tty) std::fprintf(stderr, "\n");
+  ProgressLine line("render");
+  const ClipSummary summary = RenderClip(skeleton, motion, {asf.string(), a.amc}, cameras, a.clip, a.out,
+                                         [&line](int done, int total) { line.Update(done, total, "images"); });
+  line.Finish();
   std::printf("rendered %s -> %s\n", summary.BriefReport().c_str(), a.out.c_str());
   for (const Camera& c : summary.cameras) {
     const Eigen::Vector3d at = c.CentreInWorld();

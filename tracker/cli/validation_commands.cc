@@ -9,13 +9,11 @@
 #include "io/data_root.h"
 #include "io/error.h"
 #include "io/gait_dataset.h"
-#include "io/json_file.h"
 #include "io/split.h"
-#include "io/text_reader.h"
-#include "prior/cholesky.h"
 #include "prior/model_file.h"
 #include "prior/validation.h"
 #include "prior/validation_report.h"
+#include "tracker/cli/progress.h"
 
 namespace jgpm::cli {
 namespace {
@@ -34,12 +32,6 @@ struct EvalArguments {
   std::string json;
   std::string out;
 };
-
-void PrintResult(const std::string& model, const ValidationResult& r) {
-  std::printf("%-22s %-34s %8.2f mm  (std %6.2f, %zu trials, %.1f s)\n", model.c_str(),
-              r.validation_case.Label().c_str(), r.mean_error_mm, r.std_error_mm, r.trials.size(), r.seconds);
-  std::fflush(stdout);
-}
 
 void RunEval(const EvalArguments& a) {
   if (a.models.empty()) ThrowInputError("--model", "give at least one model file");
@@ -63,52 +55,34 @@ void RunEval(const EvalArguments& a) {
   }
   // Check everything that can fail before the long part: models, trials, output folder.
   std::vector<std::unique_ptr<GaitModel>> models;
-  for (const std::string& path : a.models) models.push_back(ReadModelFile(path));
+  std::vector<const GaitModel*> model_pointers;
+  std::vector<std::string> names;
+  for (const std::string& path : a.models) {
+    models.push_back(ReadModelFile(path));
+    model_pointers.push_back(models.back().get());
+    names.push_back(std::filesystem::path(path).stem().string());
+  }
   const std::vector<TrialId> trial_ids = ReadSplit(ResolveSplitPath(a.trials, JGPM_SPLITS_DIR));
   const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
   const GaitDataset dataset = PrepareGaitDataset(root, a.trials, trial_ids, GaitCycleOptions{});
   if (!a.out.empty()) std::filesystem::create_directories(a.out);
   const int threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
-  SetLinearAlgebraThreads(1);  // the trials run in parallel instead
 
   const auto start = std::chrono::steady_clock::now();
-  std::vector<ModelResults> suite;
-  const size_t total = models.size() * cases.size();
-  for (size_t m = 0; m < models.size(); ++m) {
-    const std::vector<ValidationTrial> trials = LoadValidationTrials(dataset, *models[m]);
-    ModelResults results{std::filesystem::path(a.models[m]).stem().string(), {}};
-    for (const ValidationCase& c : cases) {
-      results.results.push_back(Validate(*models[m], trials, c, InferenceOptions{}, threads));
-      PrintResult(results.model, results.results.back());
-      const size_t done = m * cases.size() + results.results.size();
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (total > 1) std::fprintf(stderr, "  %zu/%zu cases, %.0f s, about %.0f s left\n", done, total, elapsed, elapsed / done * (total - done));
-    }
-    suite.push_back(std::move(results));
-  }
-
-  if (!a.json.empty()) {
-    nlohmann::json j;
-    if (suite.size() == 1 && suite[0].results.size() == 1) {
-      j = ValidationResultJson(suite[0].results[0]);  // one case: its fields at the top
-      j["model"] = a.models[0];
-    } else {
-      j["models"] = nlohmann::json::array();
-      for (size_t m = 0; m < suite.size(); ++m) {
-        nlohmann::json results = nlohmann::json::array();
-        for (const ValidationResult& r : suite[m].results) results.push_back(ValidationResultJson(r));
-        j["models"].push_back({{"model", a.models[m]}, {"results", results}});
-      }
-    }
-    j["split"] = a.trials;
-    WriteFileAtomic(a.json, FormatJson(j));
-    std::printf("wrote %s\n", a.json.c_str());
-  }
-  if (!a.out.empty()) {
-    const std::filesystem::path csv = std::filesystem::path(a.out) / (a.suite.empty() ? "eval.csv" : a.suite + ".csv");
-    WriteFileAtomic(csv, SuiteCsv(suite));
-    std::printf("wrote %s\n", csv.string().c_str());
-    for (const auto& png : PlotSuite(suite, a.out)) std::printf("wrote %s\n", png.string().c_str());
+  ProgressLine line("eval", 0);
+  const std::vector<ModelResults> suite =
+      ValidateSuite(model_pointers, names, dataset, cases, threads, [&](const ModelResults& m, size_t done, size_t total) {
+        const ValidationResult& r = m.results.back();
+        line.Finish();
+        std::printf("%-22s %-34s %8.2f mm  (std %6.2f, %zu trials, %.1f s)\n", m.model.c_str(),
+                    r.validation_case.Label().c_str(), r.mean_error_mm, r.std_error_mm, r.trials.size(), r.seconds);
+        std::fflush(stdout);
+        if (total > 1) line.Update(done, total, "cases");
+      });
+  line.Finish();
+  const std::string csv_name = a.suite.empty() ? "eval.csv" : a.suite + ".csv";
+  for (const auto& file : WriteValidationOutputs(suite, a.models, a.trials, a.json, a.out, csv_name)) {
+    std::printf("wrote %s\n", file.string().c_str());
   }
   std::printf("%zu case(s) x %zu model(s) in %.1f s\n", cases.size(), models.size(),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

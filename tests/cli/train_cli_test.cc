@@ -1,0 +1,64 @@
+// `jgpm train` options that must do what the README says: --max-iterations bounds both
+// learnings, and a prepared --dataset needs no data root of its own.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/json_file.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The training split's cycles, prepared once for the suite.
+const fs::path& Dataset() {
+  static const test::TempDir* dir = new test::TempDir;
+  static const fs::path path = [] {
+    const fs::path out = dir->path() / "train.json";
+    const test::CommandResult r =
+        test::RunJgpm("data cycles --split train --data " + test::CmuRoot().string() + " --out " + out.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return out;
+  }();
+  return path;
+}
+
+// Local learning counts steps; the cap was ignored (only full learning's was set).
+TEST(TrainCli, MaxIterationsBoundsLocalLearning) {
+  test::TempDir dir;
+  const fs::path model = dir.path() / "m.json";
+  const test::CommandResult r = test::RunJgpm("train --model jgpm --learning local --max-iterations 7 --dataset " +
+                                              Dataset().string() + " --out " + model.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json summary = ReadJsonFile(model, "model")["model"]["summary"];
+  EXPECT_EQ(summary["iterations"], 7);
+  EXPECT_EQ(summary["termination"], "no convergence");
+  EXPECT_NE(r.out.find("local learning: no convergence after 7 iterations"), std::string::npos) << r.out;
+}
+
+// A prepared dataset records its data root: training from it works where no data root
+// can be found (another folder, no $JGPM_DATA), and the skeleton comes from that root.
+TEST(TrainCli, DatasetBringsItsOwnDataRoot) {
+  test::TempDir dir;
+  const fs::path model = dir.path() / "pca.json";
+  std::string out, err;
+  const int status = test::RunCommand("cd " + dir.path().string() + " && env -u JGPM_DATA " + JGPM_BINARY +
+                                          " train --model pca --dataset " + Dataset().string() + " --out pca.json",
+                                      &out, &err);
+  ASSERT_EQ(status, 0) << err;
+  const nlohmann::json m = ReadJsonFile(model, "model")["model"];
+  EXPECT_EQ(m["skeleton"]["trial"], "02_01");
+  EXPECT_NE(m["skeleton"]["asf"].get<std::string>().find(":name VICON"), std::string::npos);
+  // An explicit --data that holds nothing is still refused, naming it.
+  const int refused = test::RunCommand("cd " + dir.path().string() + " && " + JGPM_BINARY +
+                                           " train --model pca --dataset " + Dataset().string() +
+                                           " --data nowhere --out pca2.json",
+                                       &out, &err);
+  EXPECT_NE(refused, 0);
+  EXPECT_NE(err.find("--data nowhere"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir.path() / "pca2.json"));
+}
+
+}  // namespace
+}  // namespace jgpm
