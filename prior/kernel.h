@@ -3,6 +3,10 @@
 //
 //   mapping  (kRbf):       k(x, x') = b1 exp(-b2/2 |x - x'|^2)                 + delta / b3
 //   dynamics (kRbfLinear): k(x, x') = a1 exp(-a2/2 |x - x'|^2) + a3 x . x'     + delta / a4
+//   kLinear:               k(x, x') = b1 x . x'                                + delta / b3
+//
+// kLinear (b2 unused) is the mapping only under ObjectiveTerms::linear_mapping, a test
+// oracle: its MAP latent points are PCA's in closed form.
 //
 // Hyper-parameters are kept as logarithms, so optimisers see an unconstrained problem.
 #pragma once
@@ -13,22 +17,25 @@ namespace jgpm {
 
 class Kernel {
  public:
-  enum class Kind { kRbf, kRbfLinear };
+  enum class Kind { kRbf, kRbfLinear, kLinear };
 
-  // `log_params` has 3 entries (kRbf) or 4 (kRbfLinear), in the order above.
+  // `log_params` has 4 entries (kRbfLinear) or 3, in the order above.
   Kernel(Kind kind, const Eigen::VectorXd& log_params);
 
   Kind kind() const { return kind_; }
-  int NumParams() const { return kind_ == Kind::kRbf ? 3 : 4; }
+  int NumParams() const { return kind_ == Kind::kRbfLinear ? 4 : 3; }
   const Eigen::VectorXd& log_params() const { return log_params_; }
-  double signal_variance() const { return p_[0]; }
+  // The RBF part's b1 (a1); 0 for kLinear.
+  double signal_variance() const { return kind_ == Kind::kLinear ? 0.0 : p_[0]; }
   double inverse_width() const { return p_[1]; }
-  double linear_variance() const { return kind_ == Kind::kRbf ? 0.0 : p_[2]; }
+  // The linear part's a3 (kLinear: b1); 0 for kRbf.
+  double linear_variance() const { return kind_ == Kind::kRbf ? 0.0 : p_[LinearIndex()]; }
   // The noise variance on the diagonal: 1 / b3 (or 1 / a4).
   double noise_variance() const { return 1.0 / p_[NumParams() - 1]; }
 
-  // The RBF part b1 exp(-b2/2 |x_i - x_j|^2) of K(X): computed once, shared by Matrix
-  // and AddGradient (its N^2 exponentials are a large part of an evaluation).
+  // The RBF part b1 exp(-b2/2 |x_i - x_j|^2) of K(X) (zero for kLinear): computed once,
+  // shared by Matrix and AddGradient (its N^2 exponentials are a large part of an
+  // evaluation).
   Eigen::MatrixXd RbfPart(const Eigen::MatrixXd& x) const;
   // K(X) for the rows of X, noise included on the diagonal; `rbf` is RbfPart(x).
   Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const;
@@ -44,6 +51,9 @@ class Kernel {
                    Eigen::MatrixXd* dx, Eigen::VectorXd* dlog_params) const;
 
  private:
+  // Index of the linear part's variance in the parameters (not kRbf).
+  int LinearIndex() const { return kind_ == Kind::kLinear ? 0 : 2; }
+
   Kind kind_;
   Eigen::VectorXd log_params_;
   Eigen::VectorXd p_;  // exp(log_params_)

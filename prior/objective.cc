@@ -121,7 +121,8 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   {
     Eigen::MatrixXd a;
     Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
-    if (!GpTerm(Kernel(Kernel::Kind::kRbf, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
+    const Kernel::Kind kind = terms_.linear_mapping ? Kernel::Kind::kLinear : Kernel::Kind::kRbf;
+    if (!GpTerm(Kernel(kind, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
                 gradient ? &dx : nullptr, &dbeta, &value.jitter, &value.why)) {
       return value;
     }
@@ -219,7 +220,10 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   if (gradient) {
     gradient->log_beta.array() += 1.0;
     gradient->log_alpha.array() += 1.0;
-    if (terms_.fixed_inverse_width) gradient->log_beta[1] = 0.0;
+    if (terms_.fixed_inverse_width) {
+      gradient->log_beta[1] = 0.0;
+      if (terms_.linear_mapping) gradient->log_beta[0] = 0.0;
+    }
     if (terms_.fixed_dynamics_noise && terms_.dynamics) gradient->log_alpha[3] = 0.0;
     for (int k = 0; k < m; ++k) gradient->x.row(subset[k]) = dx.row(k);
   }

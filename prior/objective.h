@@ -65,6 +65,12 @@ struct ObjectiveTerms {
   double scale_prior_width = 1e3; // kappa of p(W)
   bool fixed_inverse_width = true;  // hold b2 (see above)
   bool fixed_dynamics_noise = true; // hold a4 (see above)
+  // A test oracle, set by no model kind (GaitModel and model files know only the RBF):
+  // the linear mapping kernel K = b1 X X^T + I / b3 (Kernel::Kind::kLinear), whose MAP
+  // without other terms is PCA in closed form (Lawrence 2005). There b1 trades against
+  // the latent scale as b2 does for the RBF, so fixed_inverse_width holds b1 as well as
+  // b2 (unused by this kernel; left free, its prior alone would drive it to zero).
+  bool linear_mapping = false;
 };
 
 // Parts of one evaluation, for reports and tests.

@@ -1,11 +1,21 @@
-// The `jgpm` command end to end: exit codes, one-line errors naming file:line, and the
-// data subcommands on real trials.
+// The `jgpm` command end to end: exit codes, one-line errors naming file:line, the data
+// subcommands on real trials, and what the prior commands print and write against the
+// library run here on the same files.
+#include <cstdio>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
+#include "io/gait_dataset.h"
+#include "io/split.h"
 #include "io/text_reader.h"
+#include "prior/model_file.h"
+#include "prior/model_report.h"
+#include "prior/validation.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -17,6 +27,47 @@ using Result = test::CommandResult;
 Result Jgpm(const std::string& arguments) { return test::RunJgpm(arguments); }
 
 int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+// Pixels of exactly colour `bgr` in `image` within `area`, as points.
+std::vector<cv::Point> PixelsOf(const cv::Mat& image, const cv::Vec3b& bgr, const cv::Rect& area) {
+  std::vector<cv::Point> points;
+  for (int v = area.y; v < area.y + area.height; ++v) {
+    for (int u = area.x; u < area.x + area.width; ++u) {
+      if (image.at<cv::Vec3b>(v, u) == bgr) points.push_back({u, v});
+    }
+  }
+  return points;
+}
+
+// The filled bars of colour `bgr` in a chart, left to right: for each run of adjacent
+// columns whose longest vertical run of the colour (3 px or more) ends on the bars' common
+// baseline, that run's length. Text and legend swatches end elsewhere or are shorter.
+std::vector<int> BarHeights(const cv::Mat& image, const cv::Vec3b& bgr) {
+  std::vector<int> length(image.cols, 0), bottom(image.cols, -1);
+  std::map<int, int> bottoms;
+  for (int u = 0; u < image.cols; ++u) {
+    for (int v = 0, run = 0; v < image.rows; ++v) {
+      run = image.at<cv::Vec3b>(v, u) == bgr ? run + 1 : 0;
+      if (run >= std::max(3, length[u])) {
+        length[u] = run;
+        bottom[u] = v;
+      }
+    }
+    if (length[u] >= 3) ++bottoms[bottom[u]];
+  }
+  if (bottoms.empty()) return {};
+  const int baseline = std::max_element(bottoms.begin(), bottoms.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
+  std::vector<int> bars;
+  for (int u = 0; u < image.cols; ++u) {
+    if (bottom[u] != baseline || length[u] < 3) continue;
+    if (u > 0 && bottom[u - 1] == baseline && length[u - 1] >= 3) {
+      bars.back() = std::max(bars.back(), length[u]);
+    } else {
+      bars.push_back(length[u]);
+    }
+  }
+  return bars;
+}
 
 TEST(JgpmCli, HelpOnEverySubcommand) {
   for (const char* command : {"", "data", "data info", "data convert", "data cycles", "train", "plot", "plot latent", "eval", "synth", "render"}) {
@@ -142,10 +193,13 @@ TEST(JgpmCli, CyclesOnTheDefaultSplit) {
 }
 
 // `jgpm train` for every model kind on the default split (few iterations: the point is
-// the command, the file and its reload), then `jgpm plot latent` on one of them.
+// the command, the file and its reload); `jgpm model info` on each says what the library
+// says of the file (kind, size, how training ended, the training reconstruction error);
+// then `jgpm plot latent` on one of them.
 TEST(JgpmCli, TrainEveryKindAndPlot) {
   test::TempDir dir;
   for (const char* kind : {"pca", "gplvm", "gpdm", "bgpdm", "llgpdm", "jgpm", "mljgpm-torus", "mljgpm-cyl"}) {
+    SCOPED_TRACE(kind);
     const fs::path model = dir.path() / (std::string(kind) + ".json");
     const Result r = Jgpm(std::string("train --model ") + kind + " --max-iterations 3 --data " +
                           test::CmuRoot().string() + " --out " + model.string());
@@ -155,14 +209,45 @@ TEST(JgpmCli, TrainEveryKindAndPlot) {
     EXPECT_EQ(j["model"]["kind"], kind);
     const size_t expected = std::string(kind).rfind("mljgpm", 0) == 0 ? 1800 : 600;
     EXPECT_EQ(j["model"]["latent"].size(), expected) << kind;
+
+    const Result info = Jgpm("model info " + model.string());
+    ASSERT_EQ(info.status, 0) << info.err;
+    EXPECT_EQ(info.out.rfind(std::string(kind) + " model: " + std::to_string(expected) + " latent points", 0), 0u)
+        << info.out;
+    const auto loaded = ReadModelFile(model);
+    EXPECT_NE(info.out.find(loaded->data().summary.BriefReport()), std::string::npos) << info.out;
+    const double error_mm = TrainingReconstructionErrorMm(*loaded);
+    char line[96];
+    std::snprintf(line, sizeof line, "training reconstruction error: %.2f mm", error_mm);
+    EXPECT_NE(info.out.find(line), std::string::npos) << info.out << "lacks: " << line;
+    // A model reproduces its training poses to within centimetres (PCA's 3 components: 51 mm).
+    EXPECT_GT(error_mm, 0.0);
+    EXPECT_LT(error_mm, 80.0);
   }
+  // The picture: 1400 x 740, the 3-D view in its left half with the latent points in their
+  // layers' colours (BGR; innermost stride scale 0.4 first), each layer's markers spread
+  // over the view and the smaller strides nested inside the larger.
   const fs::path png = dir.path() / "latent.png";
   const Result r = Jgpm("plot latent " + (dir.path() / "mljgpm-torus.json").string() + " --out " + png.string());
   ASSERT_EQ(r.status, 0) << r.err;
-  std::ifstream in(png, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(bytes.substr(1, 3), "PNG");
-  EXPECT_GT(bytes.size(), 10000u);
+  const cv::Mat image = cv::imread(png.string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(image.empty());
+  EXPECT_EQ(image.cols, 1400);
+  EXPECT_EQ(image.rows, 740);
+  const cv::Rect view(0, 20, 700, 700);
+  std::vector<double> extents;
+  for (const cv::Vec3b& colour : {cv::Vec3b(220, 120, 30), cv::Vec3b(40, 170, 40), cv::Vec3b(40, 40, 220)}) {
+    const std::vector<cv::Point> markers = PixelsOf(image, colour, view);
+    EXPECT_GT(markers.size(), 600u) << colour;  // 600 points a layer, a few pixels each
+    const auto [left, right] = std::minmax_element(markers.begin(), markers.end(),
+                                                   [](const cv::Point& a, const cv::Point& b) { return a.x < b.x; });
+    const int width = markers.empty() ? 0 : right->x - left->x;
+    std::cout << "layer " << colour << ": " << markers.size() << " pixels, " << width << " px wide\n";
+    EXPECT_GT(width, 100) << colour;
+    extents.push_back(width);
+  }
+  EXPECT_LT(extents[0], extents[1]);
+  EXPECT_LT(extents[1], extents[2]);
 }
 
 // A time budget ends (local) learning early and the model is still written, saying so.
@@ -198,7 +283,8 @@ TEST(JgpmCli, TrainAndPlotBadInput) {
   EXPECT_FALSE(fs::exists(dir.path() / "m.json"));
 }
 
-// `jgpm eval`: one case to JSON, the paper suite on two trials to CSV and charts.
+// `jgpm eval`: one case to JSON, the paper suite on two trials to CSV and charts; the
+// numbers are what prior/validation.h computes here for the same model files and trials.
 TEST(JgpmCli, EvalOneCaseAndTheSuite) {
   test::TempDir dir;
   const std::string data = " --data " + test::CmuRoot().string();
@@ -206,19 +292,41 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
   ASSERT_EQ(Jgpm("train --model pca" + data + " --out " + pca.string()).status, 0);
   ASSERT_EQ(Jgpm("train --model gplvm --max-iterations 3" + data + " --out " + gplvm.string()).status, 0);
   const fs::path trials = dir.Write("two.txt", "07_01\n35_10\n");
+  const GaitDataset dataset =
+      PrepareGaitDataset(test::CmuRoot(), trials.string(), ReadSplit(trials), GaitCycleOptions{});
+  const auto pca_model = ReadModelFile(pca), gplvm_model = ReadModelFile(gplvm);
+  auto validate = [&](const GaitModel& model, const ValidationCase& c) {
+    return Validate(model, LoadValidationTrials(dataset, model), c);
+  };
 
   const fs::path json = dir.path() / "filtering.json";
   Result r = Jgpm("eval --model " + pca.string() + " --task filtering --noise 0.1 --draws 2 --scale 0.5 --trials " +
                   trials.string() + data + " --json " + json.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(ReadTextFile(json, "json"));
+  ValidationCase filtering;
+  filtering.task = ValidationTask::kFiltering;
+  filtering.noise = 0.1;
+  filtering.draws = 2;
+  filtering.scale = 0.5;
+  const ValidationResult expected = validate(*pca_model, filtering);
+  ASSERT_EQ(expected.trials.size(), 2u);
   ASSERT_EQ(j["trials"].size(), 2u);
+  for (int t = 0; t < 2; ++t) {
+    EXPECT_EQ(j["trials"][t]["trial"], expected.trials[t]);
+    EXPECT_NEAR(j["trials"][t]["error_mm"].get<double>(), expected.trial_errors_mm[t], 1e-9 * expected.trial_errors_mm[t]);
+  }
   EXPECT_EQ(j["trials"][0]["trial"], "07_01");
-  EXPECT_NEAR(j["mean_error_mm"].get<double>(),
-              (j["trials"][0]["error_mm"].get<double>() + j["trials"][1]["error_mm"].get<double>()) / 2, 1e-9);
-  EXPECT_EQ(j["draw_errors_mm"].size(), 2u);
+  EXPECT_NEAR(j["mean_error_mm"].get<double>(), expected.mean_error_mm, 1e-9 * expected.mean_error_mm);
+  EXPECT_NEAR(j["std_error_mm"].get<double>(), expected.std_error_mm, 1e-9 * expected.mean_error_mm);
+  ASSERT_EQ(j["draw_errors_mm"].size(), 2u);
+  for (int d = 0; d < 2; ++d) {
+    EXPECT_NEAR(j["draw_errors_mm"][d].get<double>(), expected.draw_errors_mm[d], 1e-9 * expected.mean_error_mm);
+  }
   EXPECT_EQ(j["case"], "filtering 10% s=0.5");
-  EXPECT_NE(r.out.find("filtering 10% s=0.5"), std::string::npos) << r.out;
+  char line[96];  // the case and its mean error, as the table prints them
+  std::snprintf(line, sizeof line, "%-34s %8.2f mm", "filtering 10% s=0.5", expected.mean_error_mm);
+  EXPECT_NE(r.out.find(line), std::string::npos) << r.out << "lacks: " << line;
 
   const fs::path out = dir.path() / "suite";
   r = Jgpm("eval --suite paper --model " + pca.string() + " --model " + gplvm.string() + " --trials " +
@@ -226,9 +334,61 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string csv = ReadTextFile(out / "paper.csv", "csv");
   EXPECT_EQ(Lines(csv), 1 + 2 * 35);
-  EXPECT_NE(csv.find("gplvm,reconstruction,left-side,0,0.667,"), std::string::npos) << csv;
-  for (const char* png : {"interpolation.png", "reconstruction.png", "filtering.png"}) {
-    EXPECT_GT(fs::file_size(out / png), 5000u) << png;
+  // model,task,missing,noise,scale -> mean_error_mm.
+  std::map<std::string, double> mean_mm;
+  {
+    std::istringstream rows(csv);
+    std::string row;
+    std::getline(rows, row);
+    EXPECT_EQ(row, "model,task,missing,noise,scale,mean_error_mm,std_error_mm,trials,seconds");
+    while (std::getline(rows, row)) {
+      std::vector<std::string> cells;
+      std::istringstream fields(row);
+      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      ASSERT_EQ(cells.size(), 9u) << row;
+      EXPECT_EQ(cells[7], "2") << row;
+      mean_mm[cells[0] + "," + cells[1] + "," + cells[2] + "," + cells[3] + "," + cells[4]] = std::stod(cells[5]);
+    }
+  }
+  ASSERT_EQ(mean_mm.size(), 70u);
+  ValidationCase left_side;
+  left_side.task = ValidationTask::kReconstruction;
+  left_side.missing = MissingPart::kLeftSide;
+  left_side.scale = 0.667;
+  EXPECT_NEAR(mean_mm.at("gplvm,reconstruction,left-side,0,0.667"), validate(*gplvm_model, left_side).mean_error_mm, 6e-4);
+  std::vector<double> interpolation[2];  // per model, scales 1.25 .. 0.4 (the charts' order)
+  for (const double scale : {1.25, 1.0, 0.667, 0.5, 0.4}) {
+    ValidationCase c;
+    c.scale = scale;
+    char key[64];
+    std::snprintf(key, sizeof key, "interpolation,none,0,%g", scale);
+    interpolation[0].push_back(mean_mm.at(std::string("pca,") + key));
+    interpolation[1].push_back(mean_mm.at(std::string("gplvm,") + key));
+    EXPECT_NEAR(interpolation[0].back(), validate(*pca_model, c).mean_error_mm, 6e-4) << scale;
+  }
+
+  // The charts: panels of 520 x 380 side by side (at least two panels wide) over a legend
+  // row; a bar per model and scale in the model's colour, its height proportional to the
+  // error (here against the tallest bar, to within 2 px).
+  for (const auto& [png, panels] : {std::pair{"interpolation.png", 1}, {"reconstruction.png", 3}, {"filtering.png", 3}}) {
+    const cv::Mat chart = cv::imread((out / png).string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(chart.empty()) << png;
+    EXPECT_EQ(chart.cols, 520 * std::max(2, panels)) << png;
+    EXPECT_EQ(chart.rows, 380 + 40 + 22) << png;
+    EXPECT_EQ(BarHeights(chart, {60, 60, 60}).size(), 5u * panels) << png;     // pca
+    EXPECT_EQ(BarHeights(chart, {200, 120, 30}).size(), 5u * panels) << png;  // gplvm
+  }
+  const cv::Mat chart = cv::imread((out / "interpolation.png").string(), cv::IMREAD_COLOR);
+  const std::vector<int> bars[2] = {BarHeights(chart, {60, 60, 60}), BarHeights(chart, {200, 120, 30})};
+  ASSERT_EQ(bars[0].size(), 5u);
+  ASSERT_EQ(bars[1].size(), 5u);
+  const double tallest_mm = std::max(*std::max_element(interpolation[0].begin(), interpolation[0].end()),
+                                     *std::max_element(interpolation[1].begin(), interpolation[1].end()));
+  const int tallest_px = std::max(*std::max_element(bars[0].begin(), bars[0].end()), *std::max_element(bars[1].begin(), bars[1].end()));
+  for (int m = 0; m < 2; ++m) {
+    for (int s = 0; s < 5; ++s) {
+      EXPECT_NEAR(bars[m][s], tallest_px * interpolation[m][s] / tallest_mm, 2.0) << "model " << m << ", scale " << s;
+    }
   }
 }
 

@@ -48,6 +48,12 @@ TEST(Kernel, RbfLinearGradientMatchesFiniteDifferences) {
   CheckGradient(Kernel::Kind::kRbfLinear, Eigen::Vector4d(-0.2, 0.4, -1.0, 3.0));
 }
 
+// The linear kernel (a test oracle, see ObjectiveTerms::linear_mapping): b2 is unused, so
+// its derivative is zero and finite differences see the same.
+TEST(Kernel, LinearGradientMatchesFiniteDifferences) {
+  CheckGradient(Kernel::Kind::kLinear, Eigen::Vector3d(0.4, -0.3, 1.5));
+}
+
 TEST(Kernel, ValuesByHand) {
   const Kernel rbf(Kernel::Kind::kRbf, Eigen::Vector3d(std::log(2.0), std::log(0.5), std::log(100.0)));
   Eigen::MatrixXd x(2, 3);
@@ -60,6 +66,13 @@ TEST(Kernel, ValuesByHand) {
   const Kernel lin(Kernel::Kind::kRbfLinear, Eigen::Vector4d(0, 0, std::log(3.0), std::log(10.0)));
   EXPECT_NEAR(lin.Matrix(x)(1, 1), 1.0 + 3.0 * 9 + 0.1, 1e-12);
   EXPECT_NEAR(lin.Cross(x, Eigen::Vector3d(1, 0, 0))[1], std::exp(-0.5 * 8) + 3.0, 1e-12);
+  // k(x, x') = b1 x . x' + delta / b3, whatever b2.
+  const Kernel linear(Kernel::Kind::kLinear, Eigen::Vector3d(std::log(2.0), std::log(7.0), std::log(10.0)));
+  EXPECT_NEAR(linear.Matrix(x)(0, 0), 0.1, 1e-12);
+  EXPECT_NEAR(linear.Matrix(x)(1, 1), 2.0 * 9 + 0.1, 1e-12);
+  EXPECT_NEAR(linear.Matrix(x)(0, 1), 0.0, 1e-12);
+  EXPECT_NEAR(linear.Cross(x, Eigen::Vector3d(1, -1, 3))[1], 2.0 * (1 - 2 + 6), 1e-12);
+  EXPECT_NEAR(linear.Self(Eigen::Vector3d(1, -1, 3)), 2.0 * 11, 1e-12);
 }
 
 }  // namespace

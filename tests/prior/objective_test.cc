@@ -107,6 +107,27 @@ INSTANTIATE_TEST_SUITE_P(AllGpKinds, ObjectiveGradient,
                            return name;
                          });
 
+// The linear mapping kernel (a test oracle for the trainers): its objective against finite
+// differences; held, b1 and b2 have a zero gradient.
+TEST(Objective, LinearMappingMatchesFiniteDifferences) {
+  ObjectiveTerms terms;
+  terms.linear_mapping = true;
+  terms.fixed_inverse_width = false;
+  const TrainingSet set = MakeTrainingSet(test::SyntheticGaitDataset(4, 6, 4), {1.0});
+  GpParameters p = RandomParameters(SpecFor(ModelKind::kGplvm, 4), set, nullptr);
+  p.log_beta = Eigen::Vector3d(-0.4, 0.3, 1.2);
+  std::vector<int> all(set.NumPoints());
+  for (int i = 0; i < set.NumPoints(); ++i) all[i] = i;
+  CheckAgainstFiniteDifferences(GpObjective(set.y, {}, nullptr, terms), p, all);
+  CheckAgainstFiniteDifferences(GpObjective(set.y, {}, nullptr, terms), p, {1, 2, 5, 8, 13, 21});
+  terms.fixed_inverse_width = true;
+  GpParameters gradient;
+  ASSERT_TRUE(GpObjective(set.y, {}, nullptr, terms).Evaluate(p, &gradient).ok);
+  EXPECT_EQ(gradient.log_beta[0], 0.0);
+  EXPECT_EQ(gradient.log_beta[1], 0.0);
+  EXPECT_NE(gradient.log_beta[2], 0.0);
+}
+
 // The mapping term of a two-point GPLVM by hand: K = [[b1 + 1/b3, c], [c, b1 + 1/b3]].
 TEST(Objective, MappingTermByHand) {
   Eigen::MatrixXd y(2, 1);

@@ -13,6 +13,12 @@
 
 namespace jgpm::test {
 
+// Channel `channel` of synthetic walk `gait` at `phase` (radians). Gaits and phases
+// between the dataset's give walks a model of it was not built from.
+inline double SyntheticWalkAngle(double gait, double phase, int channel) {
+  return (10 + 3 * gait) * std::sin(phase + 0.4 * channel) + 5 * std::cos(2 * phase + gait) + channel;
+}
+
 inline GaitDataset SyntheticGaitDataset(int gaits, int poses, int channels) {
   GaitDataset dataset;
   dataset.split = "synthetic";
@@ -30,7 +36,7 @@ inline GaitDataset SyntheticGaitDataset(int gaits, int poses, int channels) {
     for (int p = 0; p < poses; ++p) {
       const double phase = 6.283185307179586 * p / poses;
       for (int c = 0; c < channels; ++c) {
-        trial.cycle.poses(p, c) = (10 + 3 * g) * std::sin(phase + 0.4 * c) + 5 * std::cos(2 * phase + g) + c;
+        trial.cycle.poses(p, c) = SyntheticWalkAngle(g, phase, c);
       }
     }
     dataset.trials.push_back(trial);
