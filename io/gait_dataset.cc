@@ -109,15 +109,15 @@ void WriteGaitDataset(const fs::path& path, const GaitDataset& dataset) {
 }
 
 
-GaitDataset ReadGaitDataset(const fs::path& path) {
-  const json root = ReadJsonFile(path, "a gait dataset (JSON from `jgpm data cycles`)");
-  const JsonReader in(path.string());
+GaitDataset ParseGaitDataset(const std::string& text, const std::string& source) {
+  const json root = ParseJson(text, source);
+  const JsonReader in(source);
   if (!root.is_object() || in.Get<std::string>(root, "format", "") != "jgpm-gait-dataset") {
-    ThrowInputError(path.string(), "not a jgpm gait dataset (expected \"format\": \"jgpm-gait-dataset\")");
+    ThrowInputError(source, "not a jgpm gait dataset (expected \"format\": \"jgpm-gait-dataset\")");
   }
   const int version = in.Get<int>(root, "version", "");
   if (version != GaitDataset::kFormatVersion) {
-    ThrowInputError(path.string(), "gait dataset version " + std::to_string(version) +
+    ThrowInputError(source, "gait dataset version " + std::to_string(version) +
                                        " is not supported (expected " +
                                        std::to_string(GaitDataset::kFormatVersion) + ")");
   }
@@ -159,7 +159,9 @@ GaitDataset ReadGaitDataset(const fs::path& path) {
     trial.asf = in.Get<std::string>(t, "asf", where);
     trial.amc = in.Get<std::string>(t, "amc", where);
     trial.frames = in.Get<int>(t, "frames", where);
+    if (trial.frames < 0) in.Fail(where + "frames", "must not be negative");
     trial.frames_per_second = in.Get<double>(t, "frames_per_second", where);
+    if (!(trial.frames_per_second > 0)) in.Fail(where + "frames_per_second", "must be positive");
     GaitCycle& c = trial.cycle;
     c.clean = in.Get<bool>(t, "clean", where);
     c.problem = in.Get<std::string>(t, "problem", where);
@@ -167,6 +169,14 @@ GaitDataset ReadGaitDataset(const fs::path& path) {
     const std::string cw = where + "cycle.";
     c.start_frame = in.Get<int>(cycle, "start_frame", cw);
     c.end_frame = in.Get<int>(cycle, "end_frame", cw);
+    // Frame numbers count from the AMC's first (1 for CMU), so only the length is bounded.
+    if (c.start_frame < 0 || c.end_frame < c.start_frame ||
+        c.end_frame - c.start_frame > trial.frames) {
+      in.Fail(cw + "end_frame", "expected 0 <= start_frame <= end_frame <= start_frame + frames (" +
+                                    std::to_string(trial.frames) + "), found " +
+                                    std::to_string(c.start_frame) + " and " +
+                                    std::to_string(c.end_frame));
+    }
     c.period_frames = in.Get<double>(cycle, "period_frames", cw);
     c.periodicity = in.Get<double>(cycle, "periodicity", cw);
     c.thigh_swing_deg = in.Get<double>(cycle, "thigh_swing_deg", cw);
@@ -177,13 +187,17 @@ GaitDataset ReadGaitDataset(const fs::path& path) {
       in.Fail(where + "poses", "expected " + std::to_string(o.poses_per_cycle) + " poses, found " +
                                    std::to_string(poses.size()));
     }
-    c.poses.resize(static_cast<int>(poses.size()), channels);
+    // Every row is checked before the matrix is sized: rows x channels of a file of empty
+    // rows and empty channel names would otherwise grow with the square of its size.
     for (size_t k = 0; k < poses.size(); ++k) {
       if (static_cast<int>(poses[k].size()) != channels) {
         in.Fail(where + "poses[" + std::to_string(k) + "]",
                 "expected " + std::to_string(channels) + " values, found " +
                     std::to_string(poses[k].size()));
       }
+    }
+    c.poses.resize(static_cast<int>(poses.size()), channels);
+    for (size_t k = 0; k < poses.size(); ++k) {
       for (int ch = 0; ch < channels; ++ch) {
         if (!std::isfinite(poses[k][ch])) {
           in.Fail(where + "poses[" + std::to_string(k) + "]", "holds a non-finite value");
@@ -194,6 +208,11 @@ GaitDataset ReadGaitDataset(const fs::path& path) {
     dataset.trials.push_back(std::move(trial));
   }
   return dataset;
+}
+
+GaitDataset ReadGaitDataset(const fs::path& path) {
+  return ParseGaitDataset(ReadTextFile(path, "a gait dataset (JSON from `jgpm data cycles`)"),
+                          path.string());
 }
 
 std::string FormatGaitDatasetTable(const GaitDataset& dataset) {

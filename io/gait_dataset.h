@@ -46,8 +46,11 @@ GaitDataset PrepareGaitDataset(const std::filesystem::path& data_root, const std
 
 std::string FormatGaitDatasetJson(const GaitDataset& dataset);
 void WriteGaitDataset(const std::filesystem::path& path, const GaitDataset& dataset);
-// InputError naming the file and the field for malformed JSON, another format version,
-// wrong array sizes or non-finite numbers.
+// Parses the JSON text of a gait dataset; `source` names it in errors. InputError naming
+// the source and the field for malformed JSON, another format version, wrong array sizes,
+// non-finite numbers, integers out of range or frame numbers outside the trial.
+GaitDataset ParseGaitDataset(const std::string& text, const std::string& source);
+// ParseGaitDataset of a file's text.
 GaitDataset ReadGaitDataset(const std::filesystem::path& path);
 
 // The per-trial table `jgpm data cycles` prints, with a summary line.

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <filesystem>
 #include <string>
 #include <type_traits>
@@ -37,10 +39,19 @@ class JsonReader {
   }
 
   // Numbers must be finite (JSON writers turn NaN into null, which fails as a wrong type),
-  // alone or in arrays and arrays of arrays.
+  // alone or in arrays and arrays of arrays. Integers must be JSON integers that fit the
+  // type: nlohmann would convert 1e300 (undefined behaviour) or wrap 4294967297 to 1.
   template <typename T>
   T Get(const nlohmann::json& object, const std::string& key, const std::string& where) const {
     const nlohmann::json& value = Field(object, key, where);
+    if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+      return Integer<T>(value, where + key);
+    } else if constexpr (std::is_same_v<T, std::vector<int>>) {
+      if (!value.is_array()) Fail(where + key, std::string("has the wrong type (") + value.type_name() + ")");
+      std::vector<int> result;
+      for (size_t i = 0; i < value.size(); ++i) result.push_back(Integer<int>(value[i], where + key + "[" + std::to_string(i) + "]"));
+      return result;
+    }
     try {
       T result = value.get<T>();
       if constexpr (std::is_floating_point_v<T>) {
@@ -61,6 +72,29 @@ class JsonReader {
 
   [[noreturn]] void Fail(const std::string& field, const std::string& what) const {
     ThrowInputError(source_, "field '" + field + "' " + what);
+  }
+
+  // A JSON integer that fits T; InputError naming `field` otherwise.
+  template <typename T>
+  T Integer(const nlohmann::json& value, const std::string& field) const {
+    if (value.is_number_unsigned()) {
+      const uint64_t u = value.get<uint64_t>();
+      if (u <= static_cast<uint64_t>(std::numeric_limits<T>::max())) return static_cast<T>(u);
+    } else if (value.is_number_integer()) {
+      const int64_t i = value.get<int64_t>();
+      if constexpr (std::is_signed_v<T>) {
+        if (i >= static_cast<int64_t>(std::numeric_limits<T>::min()) &&
+            i <= static_cast<int64_t>(std::numeric_limits<T>::max())) {
+          return static_cast<T>(i);
+        }
+      } else if (i >= 0 && static_cast<uint64_t>(i) <= static_cast<uint64_t>(std::numeric_limits<T>::max())) {
+        return static_cast<T>(i);
+      }
+    } else if (!value.is_number()) {
+      Fail(field, std::string("has the wrong type (") + value.type_name() + ")");
+    }
+    const char* type = std::is_signed_v<T> ? (sizeof(T) == 4 ? "an int" : "a 64-bit integer") : "an unsigned integer";
+    Fail(field, std::string("expected an integer that fits ") + type + ", found " + value.dump());
   }
 
  private:

@@ -38,9 +38,8 @@ fs::path ResolveSplitPath(const std::string& name_or_path, const fs::path& split
                       ":" + (known.empty() ? " none" : known) + ")");
 }
 
-std::vector<TrialId> ReadSplit(const fs::path& path) {
-  const std::string text = ReadTextFile(path, "a split (one trial id such as 35_01 per line)");
-  LineReader in(text, path.string());
+std::vector<TrialId> ParseSplit(std::string_view text, const std::string& source) {
+  LineReader in(text, source);
   std::vector<TrialId> ids;
   std::set<std::string> seen;
   while (in.Next()) {
@@ -56,8 +55,13 @@ std::vector<TrialId> ReadSplit(const fs::path& path) {
     if (!seen.insert(id.name).second) in.Fail("trial " + id.name + " is listed twice");
     ids.push_back(id);
   }
-  if (ids.empty()) ThrowInputError(path.string(), "lists no trials");
+  if (ids.empty()) ThrowInputError(source, "lists no trials");
   return ids;
+}
+
+std::vector<TrialId> ReadSplit(const fs::path& path) {
+  return ParseSplit(ReadTextFile(path, "a split (one trial id such as 35_01 per line)"),
+                    path.string());
 }
 
 fs::path TrialAsfPath(const fs::path& root, const TrialId& id) {

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace jgpm {
@@ -21,7 +22,10 @@ bool ParseTrialId(const std::string& text, TrialId* id);
 std::filesystem::path ResolveSplitPath(const std::string& name_or_path,
                                        const std::filesystem::path& splits_dir);
 
-// Trial ids of a split file; InputError (file:line) for a malformed or repeated id.
+// Trial ids of a split's text; `source` names it in errors. InputError (source:line) for
+// a malformed or repeated id, or when it lists none.
+std::vector<TrialId> ParseSplit(std::string_view text, const std::string& source);
+// ParseSplit of a file's text.
 std::vector<TrialId> ReadSplit(const std::filesystem::path& path);
 
 // Files of a trial under a data root (CMU layout).

@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include "io/data_root.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -22,7 +24,7 @@ const fs::path& CmuRoot() {
     tried.emplace_back(fs::path(JGPM_SOURCE_DIR) / "data" / "cmu");
     tried.emplace_back(fs::path(JGPM_SOURCE_DIR) / ".." / "shared" / "data" / "cmu");
     for (const fs::path& candidate : tried) {
-      if (fs::is_directory(candidate / "subjects")) return fs::canonical(candidate);
+      if (HoldsMotionData(candidate)) return fs::canonical(candidate);  // as jgpm decides
     }
     std::cerr << "test data missing: no CMU data root (tried $JGPM_DATA, "
               << tried[tried.size() - 2] << ", " << tried.back() << ")\n";

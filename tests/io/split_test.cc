@@ -45,6 +45,20 @@ TEST(Split, Errors) {
   ExpectInputError([&] { ResolveSplitPath("nosuch", JGPM_SPLITS_DIR); }, {"--split nosuch", "train", "test"});
 }
 
+TEST(Split, ParsesFromMemoryNamingTheSource) {
+  const auto ids = ParseSplit("35_01\r\n\t07_12\t# tabs and CRLF\n", "memory");
+  ASSERT_EQ(ids.size(), 2u);
+  EXPECT_EQ(ids[1].subject, "07");
+  ExpectInputError([] { ParseSplit("35_01\n35_0.1\n", "memory"); }, {"memory:2", "'35_0.1'"});
+  ExpectInputError([] { ParseSplit("", "memory"); }, {"memory", "lists no trials"});
+}
+
+// The split fuzzer's seed (tests/fuzz/seeds/split) is a valid split.
+TEST(Split, FuzzSeedIsValid) {
+  const auto ids = ReadSplit(std::string(JGPM_SOURCE_DIR) + "/tests/fuzz/seeds/split/small.txt");
+  EXPECT_EQ(Names(ids), (std::set<std::string>{"35_01", "39_02", "64_golf01", "07_12"}));
+}
+
 TEST(Split, NamedSplitsResolve) {
   EXPECT_EQ(ResolveSplitPath("train", JGPM_SPLITS_DIR).filename(), "train.txt");
   test::TempDir dir;
