@@ -36,7 +36,10 @@ GaitPoseLayout::GaitPoseLayout(const Skeleton& skeleton, const std::string& sour
       }
       const Bone& bone = skeleton.bones[b];
       for (size_t d = 0; d < bone.dofs.size(); ++d) {
-        if (!IsRotation(bone.dofs[d])) continue;  // the root's translation is dropped
+        if (!IsRotation(bone.dofs[d])) {  // the root's translation is dropped
+          if (b == 0) root_translation_channels_.push_back({offsets[b] + static_cast<int>(d), static_cast<int>(DofAxis(bone.dofs[d]))});
+          continue;
+        }
         const int channel = offsets[b] + static_cast<int>(d);
         if (b == 0) {
           root_axes_.push_back(DofAxis(bone.dofs[d]));
@@ -75,6 +78,16 @@ void GaitPoseLayout::FromFrame(const double* frame, double heading_deg, double* 
 void GaitPoseLayout::ToFrame(const double* pose, double* frame) const {
   std::fill(frame, frame + num_skeleton_channels_, 0.0);
   for (int c = 0; c < NumChannels(); ++c) frame[skeleton_channel_[c]] = pose[c];
+}
+
+void GaitPoseLayout::ToFrame(const double* pose, double heading_deg, const Eigen::Vector3d& root_translation,
+                             double* frame) const {
+  ToFrame(pose, frame);
+  const Eigen::Matrix3d rotation = AxisRotation(Axis::kY, heading_deg) * RootRotation(frame);
+  std::vector<double> angles;
+  RotationToAngles(root_c_.transpose() * rotation * root_c_, root_axes_, &angles);
+  for (size_t i = 0; i < angles.size(); ++i) frame[root_frame_channels_[i]] = angles[i];
+  for (const auto& [channel, coordinate] : root_translation_channels_) frame[channel] = root_translation[coordinate];
 }
 
 GaitPoseKinematics::GaitPoseKinematics(const Skeleton& skeleton, const std::string& source)

@@ -54,6 +54,9 @@ class GaitPoseLayout {
   void FromFrame(const double* frame, double heading_deg, double* pose) const;
   // Pose channels -> a skeleton frame at the origin facing +z; other channels zero.
   void ToFrame(const double* pose, double* frame) const;
+  // The inverse of FromFrame: pose channels -> a skeleton frame turned by `heading_deg`
+  // about +y, the root's translation dofs set to `root_translation` (skeleton units, x y z).
+  void ToFrame(const double* pose, double heading_deg, const Eigen::Vector3d& root_translation, double* frame) const;
 
  private:
   std::string source_;
@@ -66,6 +69,7 @@ class GaitPoseLayout {
   std::vector<Axis> root_axes_;           // root rotation dofs, in order
   std::vector<int> root_frame_channels_;  // their indices in a skeleton frame
   std::vector<int> root_pose_channels_;   // and in a pose
+  std::vector<std::pair<int, int>> root_translation_channels_;  // (frame index, coordinate)
 };
 
 // Joint positions of gait poses on one skeleton.

@@ -130,6 +130,19 @@ void GaitModel::JointPositions(const Eigen::VectorXd& pose_deg, Eigen::Matrix3Xd
   kinematics_->Compute(pose_deg.data(), joints);
 }
 
+double MeanLatentStep(const GaitModel& model) {
+  const int poses = model.data().set.poses_per_gait;
+  const Eigen::MatrixXd& x = model.latent();
+  double sum = 0;
+  int count = 0;
+  for (int i = 0; i + 1 < x.rows(); ++i) {
+    if ((i + 1) % poses == 0) continue;
+    sum += (x.row(i + 1) - x.row(i)).norm();
+    ++count;
+  }
+  return count ? std::max(sum / count, 1e-9) : 1.0;
+}
+
 Eigen::Vector3d GaitModel::ManifoldToLatent(const ManifoldPoint& point) const {
   JGPM_CHECK(HasManifold());
   return manifold_->ToLatent(point);

@@ -141,4 +141,8 @@ class GaitModel {
   std::optional<ManifoldMap> manifold_;  // points into data_
 };
 
+// The mean distance between consecutive training latent points of a gait cycle: the
+// latent space's natural step, so that tolerances mean the same for every model's scale.
+double MeanLatentStep(const GaitModel& model);
+
 }  // namespace jgpm

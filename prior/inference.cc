@@ -14,19 +14,6 @@ namespace {
 using PackedLatent = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 // Mean distance between the latent points of consecutive training poses of a cycle.
-double MeanLatentStep(const GaitModel& model) {
-  const int poses = model.data().set.poses_per_gait;
-  const Eigen::MatrixXd& x = model.latent();
-  double sum = 0;
-  int count = 0;
-  for (int i = 0; i + 1 < x.rows(); ++i) {
-    if ((i + 1) % poses == 0) continue;
-    sum += (x.row(i + 1) - x.row(i)).norm();
-    ++count;
-  }
-  return count ? std::max(sum / count, 1e-9) : 1.0;
-}
-
 // The mean poses (and Jacobians) of all frames, computed in one batch before each
 // evaluation from the latent points in `x`, which Ceres keeps at the evaluation point.
 class BatchedMeans : public ceres::EvaluationCallback {

@@ -13,6 +13,7 @@
 
 #include "io/error.h"
 #include "io/kinematics.h"
+#include "io/output_folder.h"
 #include "io/text_reader.h"
 #include "tracker/contact_sheet.h"
 #include "tracker/ray_caster.h"
@@ -52,15 +53,6 @@ cv::Vec3f MaterialColour(BodyMaterial material) {
     case BodyMaterial::kShoes: return {35, 35, 40};
   }
   return {128, 128, 128};
-}
-
-void CheckOutputFolder(const fs::path& out) {
-  std::error_code ec;
-  if (fs::exists(out, ec)) {
-    if (!fs::is_directory(out, ec)) ThrowInputError(out.string(), "exists and is not a folder");
-    if (!fs::is_empty(out, ec))
-      ThrowInputError(out.string(), "exists and is not empty (choose a new --out, or remove it)");
-  }
 }
 
 void WriteImage(const fs::path& path, const cv::Mat& image) {
@@ -179,9 +171,6 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     ThrowInputError("render options", "fps " + FormatShortest(options.fps) + " exceeds the motion's " +
                                           FormatShortest(motion.frames_per_second));
   if (motion.NumFrames() == 0) ThrowInputError(source.amc, "the motion has no frames");
-  fs::path out = fs::path(out_dir).lexically_normal();
-  if (!out.has_filename()) out = out.parent_path();  // "DIR/"
-  CheckOutputFolder(out);
   CheckCameras(cameras);
 
   // Clip frame k shows the source frame nearest to time k / fps.
@@ -204,25 +193,10 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   std::bernoulli_distribution drop(deg.drop_rate);
   for (int k = 1; k < frames; ++k) dropped[k] = drop(random);
 
-  // The clip is made in DIR.partial. One that exists belongs to someone else (another
-  // render, or one that was killed): refuse rather than remove it.
-  const fs::path partial = out.string() + ".partial";
-  std::error_code ec;
-  if (partial.has_parent_path()) fs::create_directories(partial.parent_path(), ec);
-  if (!fs::create_directory(partial, ec)) {
-    ThrowInputError(partial.string(), ec ? "cannot create the folder (" + ec.message() + ")"
-                                         : "exists: another render is writing here, or one was stopped; "
-                                           "remove it if no render is running");
-  }
-  // Whatever goes wrong from here on (disk full, a codec missing), no half clip is left.
-  struct RemoveUnlessDone {
-    fs::path path;
-    bool done = false;
-    ~RemoveUnlessDone() {
-      std::error_code ignored;
-      if (!done) fs::remove_all(path, ignored);
-    }
-  } cleanup{partial};
+  // The clip is made in DIR.partial and moved into place when complete; whatever goes wrong
+  // on the way (disk full, a codec missing), no half clip is left.
+  OutputFolder folder(out_dir);
+  const fs::path& partial = folder.partial();
   const ClipPaths files{partial};
 
   // The room's centre: the walk's middle.
@@ -309,10 +283,7 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   WriteFileAtomic(files.GroundTruth(), FormatGroundTruth(GroundTruth(skeleton, motion, source, cameras, options, body,
                                                                      source_frames, joints, dropped)));
 
-  fs::remove(out, ec);  // an empty folder, checked above
-  fs::rename(partial, out, ec);
-  if (ec) ThrowInputError(out.string(), "cannot move the finished clip into place (" + ec.message() + ")");
-  cleanup.done = true;
+  folder.Commit();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

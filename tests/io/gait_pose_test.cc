@@ -79,6 +79,26 @@ TEST_F(GaitPoseTest, RemovingTheHeadingMakesTurnedWalksEqual) {
   }
 }
 
+// The placed ToFrame undoes FromFrame: a real frame's pose and heading, with its root
+// translation, give back every joint where the motion had it.
+TEST_F(GaitPoseTest, PlacedToFrameInvertsFromFrame) {
+  const Kinematics kinematics(skeleton_);
+  for (int f : {0, 77, 150}) {
+    const double* original = motion_.Frame(f);
+    const double heading = HeadingOf(layout_.RootRotation(original));
+    std::vector<double> pose(43), frame(skeleton_.NumChannels());
+    layout_.FromFrame(original, heading, pose.data());
+    layout_.ToFrame(pose.data(), heading, Eigen::Vector3d(original[0], original[1], original[2]), frame.data());
+    // Only the gait channels survive, so compare with the original reduced to them.
+    std::vector<double> reduced(skeleton_.NumChannels(), 0.0);
+    for (int c : layout_.skeleton_channels()) reduced[c] = original[c];
+    for (int c = 0; c < 3; ++c) reduced[c] = original[c];
+    const Eigen::Matrix3Xd expected = kinematics.Compute(reduced.data()), got = kinematics.Compute(frame.data());
+    EXPECT_LT((expected - got).cwiseAbs().maxCoeff(), 1e-6) << "frame " << f;
+    EXPECT_NEAR(HeadingOf(layout_.RootRotation(frame.data())), heading, 1e-9);
+  }
+}
+
 TEST_F(GaitPoseTest, KinematicsGivesTheMeasuredJointsOfToFrame) {
   const GaitPoseKinematics fk(skeleton_, "35.asf");
   std::vector<double> pose(43), frame(skeleton_.NumChannels());

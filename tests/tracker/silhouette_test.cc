@@ -72,6 +72,41 @@ TEST(SilhouetteTest, TaperedPartAndPartsBehindTheCamera) {
   EXPECT_GT(IoU(mask, exact.Mask()), 0.95);
 }
 
+// Particles wander off: a part beyond the lens's monotone range must not be folded back
+// into the image, parts far outside it or at absurd distances must not overflow the
+// fixed-point polygon coordinates (undefined behaviour), and nothing may be drawn for them.
+TEST(SilhouetteTest, OffAxisAndNearCameraPartsAreCulledNotFolded) {
+  Camera camera = LookAtCamera("c", 320, 240, 300, {0, 1000, -3000}, {0, 1000, 0});
+  camera.distortion = {-0.5, 0, 0, 0, 0};  // r (1 - 0.5 r^2) grows only up to r = 0.816
+  const SilhouetteRenderer renderer(camera);
+  EXPECT_NEAR(renderer.max_normalised_radius(), std::sqrt(2.0 / 3), 2e-3);
+  // A limb at normalised radius 1.2 (50 degrees off axis): the polynomial would put it at
+  // r_d = 0.336, 100 px from the centre, well inside the image.
+  const double z = 3000, x = 1.2 * z;
+  Eigen::Vector2d folded;
+  ASSERT_TRUE(camera.Project({x, 1000, 0}, &folded));
+  ASSERT_LT(std::abs(folded.x() - 159.5), 120);  // the fold is real...
+  cv::Mat mask;
+  EXPECT_TRUE(renderer.Render({{{x, 1000, 0}, {x + 100, 1000, 0}, 60, 60}}, &mask).empty());
+  EXPECT_EQ(cv::countNonZero(mask), 0);  // ...and nothing is drawn for it
+  // Just in front of the camera, behind it, at absurd coordinates, NaN: nothing drawn.
+  const Eigen::Vector3d eye = camera.CentreInWorld();
+  const std::vector<Capsule> wild = {
+      {eye + Eigen::Vector3d(0, 0, 50), eye + Eigen::Vector3d(0, 100, 50), 40, 40},
+      {eye + Eigen::Vector3d(0, 0, -500), eye + Eigen::Vector3d(0, 0, 500), 40, 40},
+      {eye + Eigen::Vector3d(1e12, 0, 100.5), eye + Eigen::Vector3d(-1e12, 0, 100.5), 1e9, 1e9},
+      {{std::nan(""), 0, 0}, {0, 0, 0}, 40, 40},
+  };
+  mask.setTo(0);
+  EXPECT_TRUE(renderer.Draw(wild, &mask).empty());
+  EXPECT_EQ(cv::countNonZero(mask), 0);
+  // A part reaching far off the image but in the lens's range is still drawn where it is.
+  const Camera pinhole = LookAtCamera("p", 320, 240, 300, {0, 1000, -3000}, {0, 1000, 0});
+  const cv::Rect drawn = SilhouetteRenderer(pinhole).Render({{{0, 1000, 0}, {2500, 1000, 0}, 60, 60}}, &mask);
+  EXPECT_GT(cv::countNonZero(mask), 150 * 10);  // half the image's width, 12 px thick
+  EXPECT_TRUE(drawn.x == 0 || drawn.br().x == 320) << "reaches the border";
+}
+
 struct Walk {
   Skeleton skeleton;
   Motion motion;

@@ -335,7 +335,7 @@ TEST(SyntheticClipTest, AnotherRendersPartialFolderIsLeftAlone) {
   options.max_frames = 2;
   test::ExpectInputError(
       [&] { RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "clip").string()); },
-      {"clip.partial", "another render"});
+      {"clip.partial", "another run"});
   EXPECT_EQ(ReadTextFile(dir.path() / "clip.partial/cam0.avi", "avi"), "someone else's");
   EXPECT_FALSE(fs::exists(dir.path() / "clip"));
 }

@@ -9,6 +9,7 @@
 #include "tracker/cli/data_commands.h"
 #include "tracker/cli/prior_commands.h"
 #include "tracker/cli/render_commands.h"
+#include "tracker/cli/track_commands.h"
 #include "tracker/cli/validation_commands.h"
 
 int main(int argc, char** argv) {
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   jgpm::cli::AddPriorCommands(app);
   jgpm::cli::AddValidationCommands(app);
   jgpm::cli::AddRenderCommands(app);
+  jgpm::cli::AddTrackCommands(app);
   jgpm::cli::AddCalibrationCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here

@@ -1,0 +1,195 @@
+#include "tracker/bit_silhouette.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "io/error.h"
+
+namespace jgpm {
+
+BitMask::BitMask(int width, int height)
+    : width_(width), height_(height), words_((width + 63) / 64), bits_(static_cast<size_t>(words_) * height, 0) {}
+
+BitMask BitMask::FromMat(const cv::Mat& mask, cv::Rect region) {
+  BitMask bits(mask.cols, mask.rows);
+  region &= cv::Rect(0, 0, mask.cols, mask.rows);
+  for (int v = region.y; v < region.y + region.height; ++v) {
+    const uint8_t* m = mask.ptr<uint8_t>(v);
+    uint64_t* out = &bits.bits_[static_cast<size_t>(v) * bits.words_];
+    for (int u = region.x; u < region.x + region.width; ++u) {
+      if (m[u]) out[u >> 6] |= uint64_t{1} << (u & 63);
+    }
+  }
+  bits.first_row_ = region.empty() ? 0 : region.y;
+  bits.last_row_ = region.empty() ? 0 : region.y + region.height;
+  return bits;
+}
+
+void BitMask::SetSpan(int v, int x0, int x1) {
+  if (v < 0 || v >= height_) return;
+  x0 = std::max(x0, 0);
+  x1 = std::min(x1, width_ - 1);
+  if (x1 < x0) return;
+  if (first_row_ == last_row_) {
+    first_row_ = v;
+    last_row_ = v + 1;
+  } else {
+    first_row_ = std::min(first_row_, v);
+    last_row_ = std::max(last_row_, v + 1);
+  }
+  uint64_t* row = &bits_[static_cast<size_t>(v) * words_];
+  const int w0 = x0 >> 6, w1 = x1 >> 6;
+  const uint64_t first = ~uint64_t{0} << (x0 & 63);
+  const uint64_t last = ~uint64_t{0} >> (63 - (x1 & 63));
+  if (w0 == w1) {
+    row[w0] |= first & last;
+    return;
+  }
+  row[w0] |= first;
+  for (int w = w0 + 1; w < w1; ++w) row[w] = ~uint64_t{0};
+  row[w1] |= last;
+}
+
+void BitMask::Clear() {
+  std::fill(bits_.begin() + static_cast<size_t>(first_row_) * words_, bits_.begin() + static_cast<size_t>(last_row_) * words_,
+            0);
+  first_row_ = last_row_ = 0;
+}
+
+int BitMask::Count() const {
+  int n = 0;
+  for (size_t i = static_cast<size_t>(first_row_) * words_; i < static_cast<size_t>(last_row_) * words_; ++i) {
+    n += std::popcount(bits_[i]);
+  }
+  return n;
+}
+
+void BitMask::DilatedRow(int v, uint64_t* out) const {
+  for (int k = 0; k < words_; ++k) {
+    uint64_t x = bits_[static_cast<size_t>(v) * words_ + k];
+    if (v > 0) x |= bits_[static_cast<size_t>(v - 1) * words_ + k];
+    if (v + 1 < height_) x |= bits_[static_cast<size_t>(v + 1) * words_ + k];
+    out[k] = x;
+  }
+  // Sideways: each bit also sets its neighbours, carried across words (bit u is pixel u).
+  uint64_t carry_in = 0;
+  for (int k = 0; k < words_; ++k) {
+    const uint64_t x = out[k];
+    const uint64_t next = k + 1 < words_ ? out[k + 1] : 0;
+    out[k] = x | (x << 1) | carry_in | (x >> 1) | (next << 63);
+    carry_in = x >> 63;
+  }
+  if (width_ % 64) out[words_ - 1] &= ~uint64_t{0} >> (64 - width_ % 64);
+}
+
+void BitMask::DilateInto(BitMask* out) const {
+  *out = BitMask(width_, height_);
+  if (first_row_ == last_row_) return;
+  out->first_row_ = std::max(0, first_row_ - 1);
+  out->last_row_ = std::min(height_, last_row_ + 1);
+  for (int v = out->first_row_; v < out->last_row_; ++v) DilatedRow(v, &out->bits_[static_cast<size_t>(v) * words_]);
+}
+
+cv::Mat BitMask::ToMat() const {
+  cv::Mat mask = cv::Mat::zeros(height_, width_, CV_8UC1);
+  for (int v = first_row_; v < last_row_; ++v) {
+    uint8_t* out = mask.ptr<uint8_t>(v);
+    const uint64_t* r = row(v);
+    for (int u = 0; u < width_; ++u) out[u] = (r[u >> 6] >> (u & 63)) & 1 ? 255 : 0;
+  }
+  return mask;
+}
+
+namespace {
+
+// Span [left, right] of a disc on the line y = v, if it meets it.
+inline bool DiscSpan(const Eigen::Vector2d& c, double r, double v, double* left, double* right) {
+  const double dy = v - c.y();
+  const double h2 = r * r - dy * dy;
+  if (h2 < 0) return false;
+  const double h = std::sqrt(h2);
+  *left = c.x() - h;
+  *right = c.x() + h;
+  return true;
+}
+
+}  // namespace
+
+void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* mask,
+                                 std::vector<Eigen::Vector2f>* outline, double outline_step_px) const {
+  JGPM_CHECK(mask->width() == camera().width && mask->height() == camera().height);
+  ImageCapsule c;
+  for (const Capsule& capsule : capsules) {
+    if (!projector_.Project(capsule, &c)) continue;
+    const Eigen::Vector2d d = c.b - c.a;
+    const double length = d.norm();
+    // The hull: both discs, and, unless one disc holds the other, the quadrilateral between
+    // the outer tangents' touching points (u along the axis, n its normal, sin(phi) =
+    // (ra - rb) / |d|: the tangents touch in directions +-n cos(phi) + u sin(phi)).
+    const bool quad = length > std::abs(c.ra - c.rb) + 1e-9;
+    Eigen::Vector2d q[4];
+    Eigen::Vector2d ta, tb;
+    if (quad) {
+      const Eigen::Vector2d u = d / length, n(-u.y(), u.x());
+      const double sin_phi = (c.ra - c.rb) / length, cos_phi = std::sqrt(std::max(0.0, 1 - sin_phi * sin_phi));
+      ta = n * cos_phi + u * sin_phi;
+      tb = -n * cos_phi + u * sin_phi;
+      q[0] = c.a + c.ra * ta;
+      q[1] = c.b + c.rb * ta;
+      q[2] = c.b + c.rb * tb;
+      q[3] = c.a + c.ra * tb;
+    }
+    const double top = std::min(c.a.y() - c.ra, c.b.y() - c.rb), bottom = std::max(c.a.y() + c.ra, c.b.y() + c.rb);
+    const int v0 = std::max(0, static_cast<int>(std::ceil(top))), v1 = std::min(mask->height() - 1, static_cast<int>(std::floor(bottom)));
+    for (int v = v0; v <= v1; ++v) {
+      double left = 1e300, right = -1e300, l, r;
+      if (DiscSpan(c.a, c.ra, v, &l, &r)) left = std::min(left, l), right = std::max(right, r);
+      if (DiscSpan(c.b, c.rb, v, &l, &r)) left = std::min(left, l), right = std::max(right, r);
+      if (quad) {
+        for (int e = 0; e < 4; ++e) {
+          const Eigen::Vector2d& p = q[e];
+          const Eigen::Vector2d& s = q[(e + 1) & 3];
+          if ((p.y() <= v && s.y() >= v) || (s.y() <= v && p.y() >= v)) {
+            const double x = s.y() == p.y() ? p.x() : p.x() + (v - p.y()) * (s.x() - p.x()) / (s.y() - p.y());
+            left = std::min(left, x);
+            right = std::max(right, x);
+            if (s.y() == p.y()) left = std::min(left, s.x()), right = std::max(right, s.x());
+          }
+        }
+      }
+      if (right < left) continue;
+      mask->SetSpan(v, static_cast<int>(std::ceil(left)), static_cast<int>(std::floor(right)));
+    }
+    if (outline) {
+      auto segment = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+        const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / outline_step_px)));
+        const Eigen::Vector2d delta = (to - from) / steps;
+        for (int k = 0; k < steps; ++k) outline->push_back((from + k * delta).cast<float>());
+      };
+      // Points on the arc of (centre, radius) from unit direction `start`, turning by `span`
+      // radians: rotations of one another, so one sine and cosine per arc.
+      auto arc = [&](const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start, double span) {
+        const int steps = std::max(2, static_cast<int>(std::ceil(std::abs(span) * radius / outline_step_px)));
+        const double cs = std::cos(span / steps), sn = std::sin(span / steps);
+        for (int k = 0; k <= steps; ++k) {
+          outline->push_back((centre + radius * start).cast<float>());
+          start = Eigen::Vector2d(cs * start.x() - sn * start.y(), sn * start.x() + cs * start.y());
+        }
+      };
+      if (quad) {
+        // As tracker/silhouette.cc walks it: the far side of b from ta to tb, the back of a
+        // from tb to ta.
+        const double half = M_PI / 2 - std::asin(std::clamp((c.ra - c.rb) / length, -1.0, 1.0));
+        segment(q[0], q[1]);
+        segment(q[2], q[3]);
+        arc(c.b, c.rb, ta, -2 * half);
+        arc(c.a, c.ra, tb, -(2 * M_PI - 2 * half));
+      } else {
+        arc(c.ra >= c.rb ? c.a : c.b, std::max(c.ra, c.rb), Eigen::Vector2d(1, 0), 2 * M_PI);
+      }
+    }
+  }
+}
+
+}  // namespace jgpm

@@ -1,0 +1,51 @@
+// A synthetic clip folder (tracker/clip_format.h) as a frame source: its cameras, each
+// frame's observed masks (or the exact ones) and, when asked, its video frames. The clip's
+// ground truth stays available for evaluation and `--init truth`.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <opencv2/videoio.hpp>
+
+#include "tracker/clip_format.h"
+#include "tracker/frame_source.h"
+
+namespace jgpm {
+
+struct ClipSourceOptions {
+  std::vector<int> cameras;   // indices into the clip's cameras; empty: all
+  bool exact_masks = false;   // masks/ (the exact silhouettes) instead of observed/
+  bool with_images = false;   // also decode each camera's video
+  int max_frames = 0;         // 0: all
+};
+
+class ClipSource : public FrameSource {
+ public:
+  // InputError naming the folder or file: no ground_truth.json, a camera index the clip
+  // does not have, a camera YAML that differs from the ground truth's camera.
+  ClipSource(const std::filesystem::path& folder, const ClipSourceOptions& options);
+
+  const std::vector<Camera>& cameras() const override { return cameras_; }
+  double fps() const override { return truth_.fps; }
+  int NumFrames() const override { return num_frames_; }
+  // InputError naming the mask file when one is missing or not a readable image of the
+  // camera's size.
+  bool Next(Frame* frame) override;
+
+  const ClipGroundTruth& truth() const { return truth_; }
+  const std::vector<int>& camera_indices() const { return indices_; }
+
+ private:
+  ClipPaths paths_;
+  ClipSourceOptions options_;
+  ClipGroundTruth truth_;
+  std::vector<int> indices_;
+  std::vector<Camera> cameras_;
+  std::vector<cv::VideoCapture> videos_;
+  int num_frames_ = 0;
+  int next_ = 0;
+};
+
+}  // namespace jgpm
