@@ -7,6 +7,7 @@ find_package(nanoflann REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.2 REQUIRED)
 find_package(Threads REQUIRED)
+find_package(ZLIB REQUIRED)  # CRCs of mask PNGs (tracker/mask_png.h)
 
 find_package(PkgConfig REQUIRED)
 # Dense Cholesky factorisation and inversion of the N x N kernel matrices (N = 1800 for
@@ -16,7 +17,7 @@ pkg_check_modules(LAPACKE REQUIRED IMPORTED_TARGET lapacke)
 pkg_check_modules(OPENBLAS REQUIRED IMPORTED_TARGET openblas)
 
 
-if(JGPM_BUILD_TESTS)
+if(JGPM_BUILD_TESTS OR JGPM_BENCHMARKS)  # the benchmarks share the tests' support code
   find_package(GTest REQUIRED)
 endif()
 if(JGPM_BENCHMARKS)

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config git ca-certificates
   libeigen3-dev libceres-dev libopencv-dev libnanoflann-dev libv4l-dev
-  libopenblas-dev liblapacke-dev
+  libopenblas-dev liblapacke-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
 )
 

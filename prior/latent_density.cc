@@ -13,19 +13,19 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586;
 }  // namespace
 
-LatentDensity::LatentDensity(const Eigen::MatrixXd& points) : points_(points) {
+LatentDensity::LatentDensity(const Eigen::MatrixXd& points, int neighbours) : points_(points) {
   const int n = static_cast<int>(points_.rows());
-  JGPM_CHECK(n >= 2 && points_.cols() == 3);
-  // Width: the median distance from a point to its nearest neighbour (the second of its
-  // two nearest, the first being itself or a duplicate at distance 0).
+  JGPM_CHECK(neighbours >= 1 && n > neighbours && points_.cols() == 3);
+  // Width: the median distance from a point to its k-th nearest neighbour (the first of its
+  // k + 1 nearest being itself or a duplicate at distance 0).
   const nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixXd> tree(3, std::cref(points_));
   std::vector<double> nearest(n);
+  std::vector<Eigen::Index> index(neighbours + 1);
+  std::vector<double> distance2(neighbours + 1);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d query = points_.row(i).transpose();
-    Eigen::Index index[2];
-    double distance2[2];
-    tree.index->knnSearch(query.data(), 2, index, distance2);
-    nearest[i] = distance2[1];
+    tree.index->knnSearch(query.data(), neighbours + 1, index.data(), distance2.data());
+    nearest[i] = distance2[neighbours];
   }
   std::nth_element(nearest.begin(), nearest.begin() + n / 2, nearest.end());
   width_ = std::max(1e-6, std::sqrt(nearest[n / 2]));

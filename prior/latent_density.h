@@ -1,7 +1,9 @@
 // A kernel density over a model's training latent points: how plausible a latent point is,
 // O(N) per point. Gaussian kernels whose width is the median distance from a training
-// point to its nearest neighbour, evaluated as a log-sum-exp about the nearest point so a
-// far-away x gets a finite log density instead of ln 0.
+// point to its k-th nearest neighbour, evaluated as a log-sum-exp about the nearest point
+// so a far-away x gets a finite log density instead of ln 0. k = 1 (the model's own
+// LogDensity) follows the data closely; a larger k smooths over the gaps between the
+// training cycles, so the density does not ripple between them.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,8 +12,8 @@ namespace jgpm {
 
 class LatentDensity {
  public:
-  // Copies the points (N x 3, N >= 2).
-  explicit LatentDensity(const Eigen::MatrixXd& points);
+  // Copies the points (N x 3, N > neighbours >= 1).
+  explicit LatentDensity(const Eigen::MatrixXd& points, int neighbours = 1);
 
   double width() const { return width_; }
   // ln p(x), normalised; `gradient` may be null.

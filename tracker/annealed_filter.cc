@@ -182,6 +182,7 @@ AnnealingReport AnnealedFilter::Update(const std::vector<CameraObservation>& obs
   double diffusion = 1;
   for (int layer = 0; layer < total_layers; ++layer) {
     Evaluate(&cost, &log_prior, observations);
+    for (double& p : log_prior) p /= total_layers;  // the prior once per frame, over the layers
     report.evaluations += static_cast<int>(particles_.rows());
     const double beta = FindBeta(cost, log_prior, options_.survival);
     report.betas.push_back(beta);

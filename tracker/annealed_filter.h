@@ -1,12 +1,16 @@
 // The annealed particle filter (Deutscher, Blake & Reid 2000; as HumanEva's baseline and
 // PARSEC's bodytrack run it), over any StateModel. Per frame:
 //   predict   every particle moves by the model's dynamics;
-//   layers    L times: weigh each particle by exp(-beta_l cost) p(x|M), the cost from
-//             the silhouette likelihood and p(x|M) the model's latent prior, untempered;
-//             beta_l is found by bisection so that the effective sample size is
-//             `survival` of the particles (bodytrack's rule: about half survive); then
-//             resample (systematic) and diffuse with the model's diffusion, shrunk by
+//   layers    L times: weigh each particle by exp(-beta_l cost) p(x|M)^(1/L), the cost
+//             from the silhouette likelihood and p(x|M) the model's latent prior; beta_l
+//             is found by bisection so that the effective sample size is `survival` of
+//             the particles (bodytrack's rule: about half survive); then resample
+//             (systematic) and diffuse with the model's diffusion, shrunk by
 //             `diffusion_shrink` each layer; the last layer is weighed, not diffused.
+// The prior is not tempered, and it is applied once per frame: a particle that survives the
+// L layers has been weighed by p(x|M) in all. Applied whole in every layer, it would count
+// L times (seen: a kernel density varying by 1.3 nats over the manifold then outweighed the
+// silhouettes, 81 mm against 35 mm without it on 20 frames of 07_01).
 // The estimate is the last layer's weighted mean (periodic coordinates averaged about the
 // best particle, so a wrap does not average to the middle). Every particle's random
 // numbers come from (seed, frame, layer, index), so results do not depend on the threads.

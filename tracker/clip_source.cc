@@ -4,10 +4,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
+#include "tracker/mask_png.h"
 
 namespace jgpm {
 
-ClipSource::ClipSource(const std::filesystem::path& folder, const ClipSourceOptions& options)
+ClipFrameSource::ClipFrameSource(const std::filesystem::path& folder, const ClipFrameSourceOptions& options)
     : paths_{folder}, options_(options) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec)) ThrowInputError(folder.string(), "no such clip folder");
@@ -38,7 +39,7 @@ ClipSource::ClipSource(const std::filesystem::path& folder, const ClipSourceOpti
   }
 }
 
-bool ClipSource::Next(Frame* frame) {
+bool ClipFrameSource::Next(Frame* frame) {
   if (next_ >= num_frames_) return false;
   const int k = next_;
   const ClipFrame& f = truth_.frames[k];
@@ -53,14 +54,7 @@ bool ClipSource::Next(Frame* frame) {
     const Camera& camera = cameras_[c];
     const std::filesystem::path path =
         options_.exact_masks ? paths_.Mask(camera.name, k) : paths_.ObservedMask(camera.name, k);
-    cv::Mat mask = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
-    if (mask.empty()) ThrowInputError(path.string(), "missing or not a readable image (expected a mask PNG)");
-    if (mask.cols != camera.width || mask.rows != camera.height) {
-      ThrowInputError(path.string(), "is " + std::to_string(mask.cols) + "x" + std::to_string(mask.rows) +
-                                         ", camera " + camera.name + " is " + std::to_string(camera.width) + "x" +
-                                         std::to_string(camera.height));
-    }
-    cv::threshold(mask, frame->masks[c], 127, 255, cv::THRESH_BINARY);
+    frame->masks[c] = ReadMaskPng(path, camera.width, camera.height);
     if (options_.with_images) {
       cv::Mat image;
       if (!videos_[c].read(image)) ThrowInputError(paths_.Video(camera.name).string(), "ends before frame " +

@@ -14,18 +14,18 @@
 
 namespace jgpm {
 
-struct ClipSourceOptions {
+struct ClipFrameSourceOptions {
   std::vector<int> cameras;   // indices into the clip's cameras; empty: all
   bool exact_masks = false;   // masks/ (the exact silhouettes) instead of observed/
   bool with_images = false;   // also decode each camera's video
   int max_frames = 0;         // 0: all
 };
 
-class ClipSource : public FrameSource {
+class ClipFrameSource : public FrameSource {
  public:
   // InputError naming the folder or file: no ground_truth.json, a camera index the clip
   // does not have, a camera YAML that differs from the ground truth's camera.
-  ClipSource(const std::filesystem::path& folder, const ClipSourceOptions& options);
+  ClipFrameSource(const std::filesystem::path& folder, const ClipFrameSourceOptions& options);
 
   const std::vector<Camera>& cameras() const override { return cameras_; }
   double fps() const override { return truth_.fps; }
@@ -39,7 +39,7 @@ class ClipSource : public FrameSource {
 
  private:
   ClipPaths paths_;
-  ClipSourceOptions options_;
+  ClipFrameSourceOptions options_;
   ClipGroundTruth truth_;
   std::vector<int> indices_;
   std::vector<Camera> cameras_;

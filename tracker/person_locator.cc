@@ -67,24 +67,34 @@ PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vecto
       candidates[c].push_back({area, box, Eigen::Vector2d(floor.x(), floor.z()), height});
     }
   }
-  // Each camera's largest plausible blob; with several cameras, the blobs whose places agree
-  // (within 1 m of the median) are the person.
-  std::vector<int> chosen(cameras.size(), -1);
-  std::vector<double> xs, zs;
-  for (size_t c = 0; c < candidates.size(); ++c) {
-    for (size_t k = 0; k < candidates[c].size(); ++k) {
-      if (chosen[c] < 0 || candidates[c][k].area > candidates[c][chosen[c]].area) chosen[c] = static_cast<int>(k);
+  // The person's place is the candidate place most cameras agree on (a candidate within
+  // 1 m), ties going to the larger total blob area: a ghost blob that only one camera sees
+  // cannot outvote cameras that agree, even when it is that camera's largest blob.
+  constexpr double kAgreeMm = 1000;
+  Eigen::Vector2d centre;
+  int best_cameras = 0;
+  long best_area = -1;
+  for (const auto& own : candidates) {
+    for (const Candidate& hypothesis : own) {
+      int agreeing = 0;
+      long area = 0;
+      for (const auto& other : candidates) {
+        int largest = 0;
+        for (const Candidate& q : other)
+          if ((q.floor - hypothesis.floor).norm() < kAgreeMm) largest = std::max(largest, q.area);
+        agreeing += largest > 0;
+        area += largest;
+      }
+      if (agreeing > best_cameras || (agreeing == best_cameras && area > best_area))
+        best_cameras = agreeing, best_area = area, centre = hypothesis.floor;
     }
-    if (chosen[c] >= 0) xs.push_back(candidates[c][chosen[c]].floor.x()), zs.push_back(candidates[c][chosen[c]].floor.y());
   }
-  if (xs.empty()) return sighting;
-  const Eigen::Vector2d centre(Median(xs), Median(zs));
+  if (best_cameras == 0) return sighting;
   std::vector<double> agreeing_x, agreeing_z, heights;
   for (size_t c = 0; c < candidates.size(); ++c) {
-    // The blob nearest the consensus, if near enough (a camera whose largest blob is clutter
-    // may still see the person).
+    // The blob nearest that place, if near enough.
     int best = -1;
-    double nearest = 1000;
+    double nearest = kAgreeMm;
     for (size_t k = 0; k < candidates[c].size(); ++k) {
       const double d = (candidates[c][k].floor - centre).norm();
       if (d < nearest) nearest = d, best = static_cast<int>(k);

@@ -3,8 +3,8 @@
 // bottom of the blob is where the feet touch the floor (y = 0), so its ray meets the floor
 // at the person's place; the ray through the blob's top, at that place, gives the height.
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
-// clutter in the air is) are passed over, and with several cameras the blobs whose places
-// agree are taken; the place is their median.
+// clutter in the air is) are passed over; with several cameras the place that most cameras'
+// blobs agree on (within 1 m) is taken, and the answer is the median of those blobs.
 #pragma once
 
 #include <vector>

@@ -6,6 +6,7 @@
 
 #include "io/error.h"
 #include "io/gait_pose.h"
+#include "prior/latent_density.h"
 
 namespace jgpm {
 
@@ -16,6 +17,7 @@ bool PoseTableOptions::Check(std::string* why) const {
   else if (scale_nodes < 2 || scale_nodes > 64) problem = "scale_nodes must be in [2, 64]";
   else if (latent_nodes < 4 || latent_nodes > 128) problem = "latent_nodes must be in [4, 128]";
   else if (!(latent_margin >= 0 && latent_margin <= 2)) problem = "latent_margin must be in [0, 2]";
+  else if (density_neighbours < 1 || density_neighbours > 64) problem = "density_neighbours must be in [1, 64]";
   else if (threads < 1) problem = "threads must be >= 1";
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr;
@@ -70,6 +72,7 @@ PoseTable::PoseTable(const GaitModel& model, const PoseTableOptions& options) : 
   fast_.assign(static_cast<size_t>(nodes) * fast_size_, 0.0f);
   poses_.assign(static_cast<size_t>(nodes) * channels_, 0.0f);
   const Kinematics kinematics(skeleton);
+  const LatentDensity density_model(model.latent(), std::min(options.density_neighbours, model.NumPoints() - 1));
   auto work = [&](int first, int last) {
     ModelWorkspace workspace;
     constexpr int kChunk = 256;
@@ -80,7 +83,8 @@ PoseTable::PoseTable(const GaitModel& model, const PoseTableOptions& options) : 
     for (int begin = first; begin < last; begin += kChunk) {
       const int count = std::min(kChunk, last - begin);
       model.MeanPoses(xs.middleRows(begin, count), poses.topRows(count), &workspace);
-      model.LogDensities(xs.middleRows(begin, count), density.head(count), &workspace);
+      Eigen::VectorXd distances2(model.NumPoints());
+      for (int r = 0; r < count; ++r) density[r] = density_model.LogDensity(xs.row(begin + r).transpose(), distances2);
       for (int r = 0; r < count; ++r) {
         const Eigen::VectorXd pose = poses.row(r).transpose();
         layout.ToFrame(pose.data(), frame.data());

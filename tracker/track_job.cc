@@ -88,11 +88,11 @@ InitialGuess TruthGuess(const ClipGroundTruth& truth, const GaitModel& model, co
 TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(const TrackedFrame&, int total)>& progress) {
   // Everything that can be refused is, before the long part.
   const std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
-  ClipSourceOptions source_options;
+  ClipFrameSourceOptions source_options;
   source_options.cameras = o.cameras;
   source_options.exact_masks = o.exact_masks;
   source_options.max_frames = o.max_frames;
-  ClipSource source(o.clip, source_options);
+  ClipFrameSource source(o.clip, source_options);
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
 
@@ -138,7 +138,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(co
   if (o.overlays) {
     // A second pass over the clip for its video frames (kept out of the tracking time).
     source_options.with_images = true;
-    ClipSource images(o.clip, source_options);
+    ClipFrameSource images(o.clip, source_options);
     std::vector<cv::VideoWriter> videos;
     for (const Camera& camera : run.cameras) {
       const fs::path path = dir / ("overlay_" + camera.name + ".avi");

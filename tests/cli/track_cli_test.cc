@@ -1,0 +1,205 @@
+// `jgpm track` on awkward clips and bad requests. Awkward clips (dropped frames, frames
+// where nobody is seen, a walker who leaves the view) are tracked to the end with each
+// frame's status saying what happened; bad requests (a corrupt mask, a camera the clip
+// lacks, a file that is not a model, an output folder in use) end with exactly one line
+// `jgpm: error: ...`, a non-zero exit, and nothing written: neither OUT nor OUT.partial.
+// The clips are rendered by `jgpm render` from the test subject's walk (07_01), 20
+// frames, two cameras at 160x120; the prior is PCA (`jgpm train --model pca`, instant).
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "io/json_file.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+using Result = test::CommandResult;
+
+constexpr int kFrames = 20;
+
+struct Fixture {
+  test::TempDir dir;
+  fs::path model, clip;
+};
+const Fixture& Shared() {
+  static Fixture fixture;  // its folder is removed at exit
+  static const bool made = [] {
+    Fixture* f = &fixture;
+    f->model = f->dir.path() / "pca.json";
+    Result r = test::RunJgpm("train --model pca --data " + test::CmuRoot().string() + " --out " + f->model.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    f->clip = f->dir.path() / "clip";
+    r = test::RunJgpm("render --amc " + (test::CmuRoot() / "subjects/07/07_01.amc").string() + " --out " +
+                      f->clip.string() + " --cameras 2 --width 160 --height 120 --max-frames " +
+                      std::to_string(kFrames) + " --no-contact-sheet");
+    EXPECT_EQ(r.status, 0) << r.err;
+    return true;
+  }();
+  (void)made;
+  return fixture;
+}
+
+// A small budget; `extra` adds or overrides options.
+Result Track(const fs::path& clip, const fs::path& out, const std::string& extra = "",
+             const fs::path& model = Shared().model) {
+  return test::RunJgpm("track --model " + model.string() + " --clip " + clip.string() + " --out " + out.string() +
+                       " --particles 60 --layers 3 --threads 2 --no-overlay " + extra);
+}
+
+std::vector<std::string> Statuses(const fs::path& out) {
+  const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+  std::vector<std::string> statuses;
+  for (const auto& frame : poses["frames"]) statuses.push_back(frame["status"]);
+  return statuses;
+}
+
+// A copy of the base clip whose observed masks (every camera) are black for frames in
+// [first, last).
+fs::path BlankedCopy(const fs::path& to, int first, int last) {
+  const fs::path& clip = Shared().clip;
+  fs::copy(clip, to, fs::copy_options::recursive);
+  for (const char* camera : {"cam0", "cam1"}) {
+    for (int k = first; k < last; ++k) {
+      const fs::path png = to / "observed" / camera / cv::format("%06d.png", k);
+      const cv::Mat mask = cv::imread(png.string(), cv::IMREAD_GRAYSCALE);
+      EXPECT_FALSE(mask.empty()) << png;
+      EXPECT_TRUE(cv::imwrite(png.string(), cv::Mat::zeros(mask.size(), CV_8UC1))) << png;
+    }
+  }
+  return to;
+}
+
+// The failure contract: one line, non-zero exit, nothing written.
+void ExpectRefused(const Result& r, const fs::path& out, const std::string& expected, const std::string& what) {
+  std::printf("%-22s exit %d, %s", what.c_str(), r.status, r.err.c_str());
+  EXPECT_NE(r.status, 0) << what;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("jgpm: error: ", 0), 0u) << what << "\n" << r.err;
+  EXPECT_NE(r.err.find(expected), std::string::npos) << what << ": no '" << expected << "' in\n" << r.err;
+  EXPECT_FALSE(fs::exists(out)) << what;
+  EXPECT_FALSE(fs::exists(out.string() + ".partial")) << what;
+}
+
+TEST(TrackCli, TracksACleanClip) {
+  const Fixture& f = Shared();
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  const Result r = Track(f.clip, out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("tracked 20 frames (20 tracked, 0 predicted, 0 lost)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+  for (const char* file : {"poses.json", "tracked.bvh", "tracked.amc", "tracked.asf", "track.png"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+  const std::vector<std::string> statuses = Statuses(out);
+  ASSERT_EQ(statuses.size(), static_cast<size_t>(kFrames));
+  EXPECT_EQ(std::count(statuses.begin(), statuses.end(), "tracked"), kFrames);
+}
+
+TEST(TrackCli, DroppedFramesArePredicted) {
+  test::TempDir dir;
+  const fs::path clip = dir.path() / "dropped", out = dir.path() / "out";
+  const Result rendered =
+      test::RunJgpm("render --amc " + (test::CmuRoot() / "subjects/07/07_01.amc").string() + " --out " +
+                    clip.string() + " --cameras 2 --width 160 --height 120 --max-frames 20 --no-contact-sheet" +
+                    " --drop-rate 0.3 --seed 5");
+  ASSERT_EQ(rendered.status, 0) << rendered.err;
+  const nlohmann::json truth = ReadJsonFile(clip / "ground_truth.json", "truth");
+  int dropped = 0;
+  for (const auto& frame : truth["frames"]) dropped += frame["dropped"].get<bool>();
+  ASSERT_GE(dropped, 2);  // the premise: seed 5 drops some frames
+  ASSERT_LE(dropped, 12);
+  const Result r = Track(clip, out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<std::string> statuses = Statuses(out);
+  ASSERT_EQ(statuses.size(), static_cast<size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) {
+    EXPECT_EQ(statuses[k], truth["frames"][k]["dropped"].get<bool>() ? "predicted" : "tracked") << "frame " << k;
+  }
+}
+
+TEST(TrackCli, NobodySeenIsLostThenFoundAgain) {
+  test::TempDir dir;
+  const fs::path clip = BlankedCopy(dir.path() / "gap", 8, 12), out = dir.path() / "out";
+  const Result r = Track(clip, out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<std::string> statuses = Statuses(out);
+  ASSERT_EQ(statuses.size(), static_cast<size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) {
+    // The person reappears at frame 12 and is found again from the masks at once.
+    EXPECT_EQ(statuses[k], k >= 8 && k < 12 ? "lost" : "tracked") << "frame " << k;
+  }
+  const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+  EXPECT_FALSE(poses["frames"][13]["joints_mm"].is_null());
+}
+
+TEST(TrackCli, AWalkerLeavingTheViewIsLost) {
+  test::TempDir dir;
+  const fs::path clip = BlankedCopy(dir.path() / "gone", 12, kFrames), out = dir.path() / "out";
+  const Result r = Track(clip, out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("(12 tracked, 0 predicted, 8 lost)"), std::string::npos) << r.out;
+  const std::vector<std::string> statuses = Statuses(out);
+  ASSERT_EQ(statuses.size(), static_cast<size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) EXPECT_EQ(statuses[k], k < 12 ? "tracked" : "lost") << "frame " << k;
+}
+
+TEST(TrackCli, ACorruptMaskIsOneErrorLineNamingIt) {
+  // A mask PNG cut short, met while tracking (frame 5 of 20): the run stops, and the
+  // folder it was writing into goes with it.
+  test::TempDir dir;
+  const fs::path corrupt = dir.path() / "corrupt", out = dir.path() / "out";
+  fs::copy(Shared().clip, corrupt, fs::copy_options::recursive);
+  const fs::path png = corrupt / "observed" / "cam1" / "000005.png";
+  fs::resize_file(png, fs::file_size(png) / 2);
+  ExpectRefused(Track(corrupt, out), out, "000005.png", "truncated mask");
+}
+
+TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
+  const Fixture& f = Shared();
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  // A camera the clip does not have.
+  ExpectRefused(Track(f.clip, out, "--cameras 0,5"), out, "camera 5", "--cameras 0,5");
+  // Files that are not models: the clip's ground truth, a gait dataset.
+  ExpectRefused(Track(f.clip, out, "", f.clip / "ground_truth.json"), out, "ground_truth.json", "truth as model");
+  const fs::path dataset = dir.path() / "cycles.json";
+  dir.Write("one.txt", "07_01\n");
+  const Result made = test::RunJgpm("data cycles --split " + (dir.path() / "one.txt").string() + " --data " +
+                                    test::CmuRoot().string() + " --out " + dataset.string());
+  ASSERT_EQ(made.status, 0) << made.err;
+  ExpectRefused(Track(f.clip, out, "", dataset), out, "cycles.json", "gait dataset as model");
+  ExpectRefused(Track(f.clip, out, "", dir.path() / "none.json"), out, "none.json", "missing model");
+  // No clip there.
+  ExpectRefused(Track(dir.path() / "no-clip", out), out, "no-clip", "missing clip");
+
+  // An output folder that is in use: refused, left as it was.
+  fs::create_directories(dir.path() / "full");
+  dir.Write("full/mine.txt", "mine");
+  const fs::path full = dir.path() / "full";
+  const Result r = Track(f.clip, full);
+  std::printf("%-22s exit %d, %s", "--out in use", r.status, r.err.c_str());
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("not empty"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(full.string() + ".partial"));
+  std::vector<fs::path> inside;
+  for (const auto& entry : fs::directory_iterator(full)) inside.push_back(entry.path().filename());
+  EXPECT_EQ(inside, std::vector<fs::path>{"mine.txt"});
+  std::ifstream mine(full / "mine.txt");
+  std::string text;
+  std::getline(mine, text);
+  EXPECT_EQ(text, "mine");
+}
+
+}  // namespace
+}  // namespace jgpm

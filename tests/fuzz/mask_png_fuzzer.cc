@@ -1,0 +1,21 @@
+// libFuzzer target: DecodeMaskPng must either return a binary mask of the asked size or
+// throw InputError, whatever the bytes.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "io/error.h"
+#include "tracker/mask_png.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::vector<uint8_t> bytes(data, data + size);
+  try {
+    const cv::Mat mask = jgpm::DecodeMaskPng(bytes, "fuzz.png", 32, 24);
+    JGPM_CHECK(mask.cols == 32 && mask.rows == 24 && mask.type() == CV_8U);
+    JGPM_CHECK(cv::countNonZero(mask) == cv::countNonZero(mask == 255));
+  } catch (const jgpm::InputError&) {
+  }
+  return 0;
+}
