@@ -1,6 +1,9 @@
 #include "calibration/camera.h"
 
+#include <cctype>
 #include <cmath>
+#include <string>
+#include <string_view>
 
 #include <Eigen/Geometry>
 #include <opencv2/calib3d.hpp>
@@ -159,18 +162,49 @@ int ReadPositiveInt(const cv::FileNode& node, const std::string& key, const std:
   return static_cast<int>(node);
 }
 
+}  // namespace
+
+bool ValidCameraName(const std::string& name) {
+  if (name.empty() || name.size() > 64 || !std::isalnum(static_cast<unsigned char>(name[0]))) return false;
+  for (const char ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.') return false;
+  return true;
+}
+
+namespace {
+
 cv::FileStorage OpenYaml(const std::string& text, const std::string& source) {
   // OpenCV 4.6's YAML reader ends the process (an exception thrown through a noexcept
-  // frame) on control bytes and on an indented line starting with ':' (an empty key);
-  // found by fuzzing. Neither belongs in a camera file, so refuse them first.
+  // frame) on control bytes and on an indented line starting with ':' (an empty key), and
+  // loops forever on a line starting with '-' after its first document has ended (at a
+  // '...' line, or at a line indented less than an indented first key); found by fuzzing.
+  // None of these belongs in a camera file, which is one document whose keys start in the
+  // first column, so refuse them first.
   int line = 1;
   bool line_start = true;
+  bool seen_content = false;  // a line other than blanks, comments, directives, '---'
   for (size_t i = 0; i < text.size(); ++i) {
     const unsigned char ch = static_cast<unsigned char>(text[i]);
-    if (ch < 0x20 && ch != '\n' && ch != '\r' && ch != '\t')
-      ThrowInputError(source + ":" + std::to_string(line),
-                      "not a text file (control byte " + std::to_string(ch) + ")");
-    if (ch == ':' && line_start) ThrowInputError(source + ":" + std::to_string(line), "a key is empty");
+    const std::string where = source + ":" + std::to_string(line);
+    if ((ch < 0x20 && ch != '\n' && ch != '\r' && ch != '\t') || ch == 0x7f)
+      ThrowInputError(where, "not a text file (control byte " + std::to_string(ch) + ")");
+    if (ch == ':' && line_start) ThrowInputError(where, "a key is empty");
+    if (i == 0 || text[i - 1] == '\n') {  // the line's first character
+      const std::string_view rest = std::string_view(text).substr(i, text.find('\n', i) - i);
+      const size_t first = rest.find_first_not_of(" \t\r");
+      const bool blank = first == std::string_view::npos || rest[first] == '#' || rest[first] == '%';
+      if (rest.substr(0, 3) == "...")
+        ThrowInputError(where, "a document end '...' (a camera file is one YAML document)");
+      if (rest.substr(0, 3) == "---") {
+        if (seen_content) ThrowInputError(where, "a second YAML document '---' (a camera file is one document)");
+        const size_t after = rest.find_first_not_of(" \t\r", 3);
+        if (after != std::string_view::npos && rest[after] != '#')
+          ThrowInputError(where, "text after '---' (the keys start on the next line)");
+      } else if (!blank) {
+        if (!seen_content && first != 0) ThrowInputError(where, "the first key is indented (expected it in column 1)");
+        seen_content = true;
+      }
+    }
     if (ch == '\n') ++line;
     line_start = ch == '\n' || (line_start && (ch == ' ' || ch == '\t'));
   }
@@ -225,6 +259,8 @@ CameraFile ParseCameraYaml(const std::string& text, const std::string& source) {
   if (!name.empty() && !name.isNone()) {
     if (!name.isString()) ThrowInputError(source, "key 'camera_name' must be a string");
     c.name = static_cast<std::string>(name);
+    if (!ValidCameraName(c.name))
+      ThrowInputError(source, "key 'camera_name' must be 1-64 letters, digits, '_', '-' or '.' (it names files)");
   }
   CameraPose pose;
   if (ReadExtrinsics(fs, source, &pose)) {

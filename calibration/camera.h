@@ -47,6 +47,10 @@ struct Camera {
   Eigen::Matrix3Xd PixelRaysInWorld(const Eigen::Matrix2Xd& pixels) const;
 };
 
+// A camera's name names files and folders (a clip's masks/NAME/, overlay_NAME.avi), so it
+// is 1-64 letters, digits, '_', '-' or '.', starting with a letter or digit.
+bool ValidCameraName(const std::string& name);
+
 // A camera at `centre_mm` looking at `target_mm`, image rows pointing down and world +y
 // up in the image (no roll). Distortion zero. The target must not be straight above or
 // below the centre.

@@ -129,7 +129,7 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
     // (ra - rb) / |d|: the tangents touch in directions +-n cos(phi) + u sin(phi)).
     const bool quad = length > std::abs(c.ra - c.rb) + 1e-9;
     Eigen::Vector2d q[4];
-    Eigen::Vector2d ta, tb;
+    Eigen::Vector2d ta = Eigen::Vector2d::Zero(), tb = Eigen::Vector2d::Zero();  // used only with quad
     if (quad) {
       const Eigen::Vector2d u = d / length, n(-u.y(), u.x());
       const double sin_phi = (c.ra - c.rb) / length, cos_phi = std::sqrt(std::max(0.0, 1 - sin_phi * sin_phi));

@@ -233,7 +233,7 @@ void ExpectSameCamera(const Camera& a, const Camera& b) {
 
 TEST(CameraYaml, FormatThenParseGivesIdenticalValues) {
   for (const std::vector<double>& distortion : kDistortions) {
-    for (const std::string name : {"cam0", "left camera: 1", "0"}) {
+    for (const std::string name : {"cam0", "left-camera_1.b", "0"}) {
       CameraFile file;
       file.camera = PosedCamera(distortion);
       file.camera.name = name;
@@ -397,6 +397,9 @@ const test::MalformedCase kMalformed[] = {
     {"DistortionMatrix2x3", "rows: 1\n   cols: 5\n   dt: d\n   data: [ -0.2, 0.05, 0.001, -0.001, 0. ]",
      "rows: 2\n   cols: 3\n   dt: d\n   data: [ -0.2, 0.05, 0.001, -0.001, 0., 0. ]", "", "'distortion_coefficients' is 2x3"},
     {"CameraNameNotAString", "camera_name: \"cam0\"", "camera_name: 7", "", "'camera_name' must be a string"},
+    {"CameraNameIsAPath", "camera_name: \"cam0\"", "camera_name: \"../cam0\"", "", "'camera_name' must be 1-64"},
+    // Found by the fuzzer: a name OpenCV reads but cannot write back.
+    {"CameraNameStartsWithABracket", "camera_name: \"cam0\"", "camera_name:]\xa6\xa6", "", "'camera_name' must be 1-64"},
     {"RotationNotARotation", "[ 1., 0., 0., 0., 1., 0., 0., 0., 1. ]", "[ 1., 0., 0., 0., 2., 0., 0., 0., 1. ]", "",
      "'cam_from_world_rotation': cam_from_world_rotation is not a rotation"},
     {"RotationIsAReflection", "[ 1., 0., 0., 0., 1., 0., 0., 0., 1. ]", "[ -1., 0., 0., 0., 1., 0., 0., 0., 1. ]", "",
@@ -414,6 +417,13 @@ const test::MalformedCase kMalformed[] = {
     {"ColumnCountNotANumber", "   cols: 3\n   dt: d\n   data: [ 520.", "   cols:A3\n   dt: d\n   data: [ 520.", "",
      "'camera_matrix' is not a 3x3"},
     {"EmptyNestedKey", "   dt: d\n   data: [ 520.", "   :1.0dt: d\n   data: [ 520.", "", "a key is empty"},
+    // Found by the fuzzer too: OpenCV looped forever on a '-' line after the first document
+    // had ended (these cases hang without the check in OpenYaml).
+    {"DashAfterDocumentEnd", "*", "%YAML:1.0\na: 1\n...\n-a\n", "", "a document end '...'"},
+    {"DashAfterIndentedFirstKey", "*", "%YAML:1.0\n a: 1\nxyz\n-\n", "", "the first key is indented"},
+    {"KeyOnTheDocumentStartLine", "*", "%YAML:1.0\n--- a: 1\nxyz\n-\n", "", "text after '---'"},
+    {"SecondDocument", "*", "%YAML:1.0\n---\na: 1\n---\nb: 2\n", "", "a second YAML document"},
+    {"DeleteByte", "*", "%YAML:1.0\na: 1\x7f\n", "", "control byte 127"},
     {"Empty", "*", "", "", "empty"},
     {"OnlyBlanks", "*", "\n   \n", "", "file is empty"},
 };

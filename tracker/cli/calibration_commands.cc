@@ -172,7 +172,13 @@ void AddCalibrationCommands(CLI::App& app) {
       ->required()
       ->check(kPositiveMm);
   calibrate->add_option("--out", a->out, "camera YAML to write (OpenCV's calibration keys plus the pose)")->required();
-  calibrate->add_option("--name", a->name, "camera name written to the YAML")->capture_default_str();
+  calibrate->add_option("--name", a->name, "camera name written to the YAML")
+      ->check(CLI::Validator(
+          [](const std::string& name) {
+            return ValidCameraName(name) ? std::string() : "expected 1-64 letters, digits, '_', '-' or '.'";
+          },
+          "NAME"))
+      ->capture_default_str();
   CLI::Option* floor = calibrate->add_option(
       "--floor-image", a->floor_image,
       "image of a chessboard lying on the floor: world origin at its first inner corner, +x along its rows, +z "
