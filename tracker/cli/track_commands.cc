@@ -1,12 +1,18 @@
 #include "tracker/cli/track_commands.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <thread>
 
+#include "io/data_root.h"
 #include "io/error.h"
+#include "io/output_batch.h"
+#include "prior/png_file.h"
 #include "tracker/cli/progress.h"
+#include "tracker/track_bench.h"
 #include "tracker/track_job.h"
+#include "tracker/tracking_suite.h"
 
 namespace jgpm::cli {
 namespace {
@@ -79,6 +85,71 @@ void RunTrack(TrackArguments a) {
   for (const auto& file : result.written) std::printf("wrote %s\n", file.string().c_str());
 }
 
+struct BenchArguments {
+  std::string suite = std::string(JGPM_SOURCE_DIR) + "/datasets_scripts/tracking_suite.txt";
+  std::string out;
+  std::string clips;
+  std::string data;
+  std::string budget_clip = "07_01-4cam";
+  std::vector<std::string> baselines = {"joint-space", "no-latent-prior"};
+  bool no_budget = false;
+  int threads = 0;
+  TrackBenchOptions bench;
+};
+
+void RunBench(BenchArguments a) {
+  if (a.bench.models.empty()) ThrowInputError("--model", "give at least one model file");
+  const std::vector<SuiteClip> clips = ReadTrackingSuite(a.suite);
+  const std::filesystem::path clip_folder = a.clips.empty() ? std::filesystem::path(a.out) / "clips" : std::filesystem::path(a.clips);
+  const auto asked = [&a](const char* name) { return std::find(a.baselines.begin(), a.baselines.end(), name) != a.baselines.end(); };
+  a.bench.joint_space = asked("joint-space");
+  a.bench.no_latent_prior = asked("no-latent-prior");
+  a.bench.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(a.out, ec);
+    if (ec) ThrowInputError("--out " + a.out, "cannot create the folder (" + ec.message() + ")");
+    const auto root = [&a] { return ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data)); };
+    RenderTrackingSuite(clips, root, clip_folder, [](const SuiteClip& clip, bool rendered) {
+      std::printf("%s %s\n", rendered ? "rendered" : "reusing", clip.name.c_str());
+      std::fflush(stdout);
+    });
+  }
+  ProgressLine line("bench", 0);
+  const std::vector<TrackBenchRow> rows =
+      RunTrackBench(clips, clip_folder, a.bench, [&line](const TrackBenchRow& r, int done, int total) {
+        line.Finish();
+        std::printf("%-22s %-16s %-16s %6.1f mm (14 joints; search alone %5.1f; floor %5.1f), 17 joints root-relative "
+                    "%5.1f, %4.1f%% failed, %4.1f%% swapped, %6.1f frames/s\n",
+                    r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.bt14_mm, r.search_bt14_mm, r.floor_bt14_root_mm,
+                    r.g17_root_mm, 100 * r.failure_rate, 100 * r.swap_rate, r.fps);
+        std::fflush(stdout);
+        line.Update(done, total, "runs");
+      });
+  line.Finish();
+  OutputBatch batch;
+  const std::filesystem::path out(a.out);
+  batch.Add(out / "track.csv", TrackBenchCsv(rows));
+  batch.Add(out / "track.png", EncodePng(TrackBenchPlot(rows), "track.png"));
+  if (!a.no_budget && std::filesystem::exists(clip_folder / a.budget_clip / "ground_truth.json")) {
+    const std::vector<std::pair<int, int>> budgets = {{50, 3}, {100, 3}, {100, 4}, {200, 4}, {400, 4}, {800, 5}};
+    const std::vector<BudgetPoint> points =
+        RunBudgetCurve(clip_folder / a.budget_clip, a.bench.models[0], budgets, a.bench);
+    std::string csv = "clip,model,particles,layers,bt14_mm,fps\n";
+    for (const BudgetPoint& p : points) {
+      char row[256];
+      std::snprintf(row, sizeof(row), "%s,%s,%d,%d,%.2f,%.2f\n", a.budget_clip.c_str(),
+                    std::filesystem::path(a.bench.models[0]).stem().string().c_str(), p.particles, p.layers, p.bt14_mm,
+                    p.fps);
+      csv += row;
+      std::printf("budget %4d x %d: %6.1f mm at %6.1f frames/s\n", p.particles, p.layers, p.bt14_mm, p.fps);
+    }
+    batch.Add(out / "budget.csv", csv);
+    batch.Add(out / "budget.png", EncodePng(BudgetPlot(points, a.budget_clip), "budget.png"));
+  }
+  for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
+}
+
 }  // namespace
 
 void AddTrackCommands(CLI::App& app) {
@@ -110,6 +181,35 @@ void AddTrackCommands(CLI::App& app) {
   track->add_flag("--exact-masks", a->job.exact_masks, "the clip's exact masks instead of its observed (degraded) ones");
   track->add_flag("--no-overlay", a->no_overlay, "skip the overlay videos");
   track->callback([a] { RunTrack(*a); });
+
+  auto b = std::make_shared<BenchArguments>();
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
+  bench->require_subcommand(1);
+  CLI::App* track_bench = bench->add_subcommand(
+      "track", "Track every clip of the tracking suite with every model and the baselines; track.csv and plots");
+  track_bench->add_option("--suite", b->suite, "the suite (NAME TRIAL [render options] per line)")->capture_default_str();
+  track_bench->add_option("--model", b->bench.models, "model file (repeat for several)")->required();
+  track_bench->add_option("--out", b->out, "folder for track.csv, track.png, budget.csv, budget.png")->required();
+  track_bench->add_option("--clips", b->clips, "where the suite's clips are rendered or found (default: OUT/clips)");
+  track_bench->add_option("--data", b->data, "data root (default: $JGPM_DATA, ./data/cmu, ../shared/data/cmu)");
+  track_bench->add_option("--seeds", b->bench.seeds, "runs per clip and method (seeds 1..N), averaged")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  track_bench->add_option("--particles", b->bench.tracker.annealing.particles, "particles per layer")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  track_bench->add_option("--layers", b->bench.tracker.annealing.layers, "annealing layers")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
+  track_bench->add_option("--max-frames", b->bench.max_frames, "frames per clip (0: all)")->check(CLI::NonNegativeNumber);
+  track_bench->add_option("--threads", b->threads, "threads (0: all cores)")->check(CLI::Range(0, 256));
+  track_bench->add_option("--budget-clip", b->budget_clip, "the clip of the accuracy-versus-budget curve")
+      ->capture_default_str();
+  track_bench->add_option("--baseline", b->baselines, "baselines run beside the models (repeat; 'none' for none)")
+      ->check(CLI::IsMember({"joint-space", "no-latent-prior", "none"}))
+      ->capture_default_str();
+  track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
+  track_bench->callback([b] { RunBench(*b); });
 }
 
 }  // namespace jgpm::cli

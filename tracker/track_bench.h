@@ -1,0 +1,64 @@
+// `jgpm bench track`: every clip of the tracking suite tracked with every model (and the
+// baselines) in one run, measured against the clips' truth: mean 3-D joint error (absolute,
+// root-relative, Procrustes-aligned) on the 14 joints of PARSEC bodytrack's measure and the
+// 17 gait joints, with and without the joint-angle refinement, failure and leg-swap rates,
+// frames per second of filtering and likelihood evaluations per frame, averaged over seeds.
+// Beside each model, its floor: per frame the model's best pose for the true pose (sequence
+// inference, prior/inference.h, on the true gait poses), root-relative, on the subject's own
+// skeleton: tracker error / floor says how much is search and how much prior.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "tracker/tracker.h"
+#include "tracker/tracking_suite.h"
+
+namespace jgpm {
+
+struct TrackBenchOptions {
+  std::vector<std::string> models;  // model files
+  bool joint_space = true;          // the classic baseline (on the first model's skeleton)
+  bool no_latent_prior = true;      // the first model without p(x|M)
+  int seeds = 2;
+  int max_frames = 0;               // per clip; 0: all
+  TrackerOptions tracker;
+};
+
+struct TrackBenchRow {
+  std::string clip, model, method;  // method: "prior", "no-latent-prior", "joint-space"
+  int cameras = 0, frames = 0, seeds = 0;
+  double bt14_mm = 0, bt14_root_mm = 0, bt14_procrustes_mm = 0;   // refined (the output)
+  double g17_mm = 0, g17_root_mm = 0, g17_procrustes_mm = 0;
+  double search_bt14_mm = 0, search_g17_root_mm = 0;              // before refinement
+  double failure_rate = 0, swap_rate = 0, lost_rate = 0;
+  double fps = 0, evaluations_per_frame = 0;
+  double floor_bt14_root_mm = -1, floor_g17_root_mm = -1;         // -1: not applicable
+};
+
+// Tracks every clip in `folder` (rendered: tracker/tracking_suite.h). `progress` (may be
+// empty) gets each finished row with the number done and the total.
+std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, const std::filesystem::path& folder,
+                                         const TrackBenchOptions& options,
+                                         const std::function<void(const TrackBenchRow&, int done, int total)>& progress = {});
+
+std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows);
+// Mean absolute error (14 joints) per clip, one bar per model and method.
+cv::Mat TrackBenchPlot(const std::vector<TrackBenchRow>& rows);
+
+// The accuracy-versus-budget curve: one clip tracked at each particles x layers budget.
+struct BudgetPoint {
+  int particles = 0, layers = 0;
+  double bt14_mm = 0, fps = 0;
+};
+std::vector<BudgetPoint> RunBudgetCurve(const std::filesystem::path& clip, const std::string& model,
+                                        const std::vector<std::pair<int, int>>& budgets, const TrackBenchOptions& options);
+// Error against frames per second, with PARSEC bodytrack's published points on the same clip
+// (../shared/docs/TRACKER.md) for comparison.
+cv::Mat BudgetPlot(const std::vector<BudgetPoint>& points, const std::string& clip);
+
+}  // namespace jgpm
