@@ -59,6 +59,13 @@ Eigen::MatrixXd Cholesky::HalfSolve(const Eigen::MatrixXd& b) const {
   return factor_.triangularView<Eigen::Lower>().solve(b);
 }
 
+Eigen::VectorXd Cholesky::HalfSolve(const Eigen::VectorXd& b) const {
+  JGPM_CHECK(ok_ && b.rows() == factor_.rows());
+  Eigen::VectorXd x = b;
+  factor_.triangularView<Eigen::Lower>().solveInPlace(x);
+  return x;
+}
+
 void Cholesky::HalfSolveInPlace(Eigen::Ref<Eigen::MatrixXd> b) const {
   JGPM_CHECK(ok_ && b.rows() == factor_.rows());
   factor_.triangularView<Eigen::Lower>().solveInPlace(b);
@@ -67,6 +74,13 @@ void Cholesky::HalfSolveInPlace(Eigen::Ref<Eigen::MatrixXd> b) const {
 Eigen::MatrixXd Cholesky::HalfSolveTransposed(const Eigen::MatrixXd& b) const {
   JGPM_CHECK(ok_ && b.rows() == factor_.rows());
   return factor_.triangularView<Eigen::Lower>().transpose().solve(b);
+}
+
+Eigen::VectorXd Cholesky::HalfSolveTransposed(const Eigen::VectorXd& b) const {
+  JGPM_CHECK(ok_ && b.rows() == factor_.rows());
+  Eigen::VectorXd x = b;
+  factor_.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
+  return x;
 }
 
 Eigen::MatrixXd Cholesky::Inverse() const {

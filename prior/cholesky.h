@@ -33,10 +33,14 @@ class Cholesky {
   // L^-1 b, where K + jitter I = L L^T: |L^-1 k|^2 = k^T K^-1 k without the cancellation
   // of a quadratic form in an explicit inverse.
   Eigen::MatrixXd HalfSolve(const Eigen::MatrixXd& b) const;
+  // The same for one vector: a plain triangular solve (the matrix form repacks the whole
+  // factor for a single column, ~1.5 ms for N = 1800).
+  Eigen::VectorXd HalfSolve(const Eigen::VectorXd& b) const;
   // b <- L^-1 b, in place (no allocation for the caller's workspace).
   void HalfSolveInPlace(Eigen::Ref<Eigen::MatrixXd> b) const;
   // L^-T b.
   Eigen::MatrixXd HalfSolveTransposed(const Eigen::MatrixXd& b) const;
+  Eigen::VectorXd HalfSolveTransposed(const Eigen::VectorXd& b) const;
   // (K + jitter I)^-1 as a full symmetric matrix, from the factor (LAPACK dpotri).
   Eigen::MatrixXd Inverse() const;
 

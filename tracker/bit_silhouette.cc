@@ -103,15 +103,18 @@ cv::Mat BitMask::ToMat() const {
 
 namespace {
 
-// Span [left, right] of a disc on the line y = v, if it meets it.
-inline bool DiscSpan(const Eigen::Vector2d& c, double r, double v, double* left, double* right) {
-  const double dy = v - c.y();
-  const double h2 = r * r - dy * dy;
-  if (h2 < 0) return false;
-  const double h = std::sqrt(h2);
-  *left = c.x() - h;
-  *right = c.x() + h;
-  return true;
+// ceil and floor to int for |x| well inside the int range (the projector culls what is
+// far outside the image): a truncation and a compare, where std::ceil/floor are library
+// calls on jgpm's baseline x86-64 (no SSE4.1 rounding instruction).
+inline int CeilInt(double x) {
+  x = std::clamp(x, -1e9, 1e9);
+  const int i = static_cast<int>(x);
+  return i + (x > i);
+}
+inline int FloorInt(double x) {
+  x = std::clamp(x, -1e9, 1e9);
+  const int i = static_cast<int>(x);
+  return i - (x < i);
 }
 
 }  // namespace
@@ -140,27 +143,55 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
       q[2] = c.b + c.rb * tb;
       q[3] = c.a + c.ra * tb;
     }
+    // Rows v0..v1 (clamped to the image; coordinates are bounded by the projector's culling,
+    // so the int conversions are defined). Each non-horizontal quad edge as x = x0 + (v -
+    // y0) * slope over [y0, y1], set up once per capsule (a horizontal edge's ends are
+    // also its neighbours' ends, so it adds nothing).
     const double top = std::min(c.a.y() - c.ra, c.b.y() - c.rb), bottom = std::max(c.a.y() + c.ra, c.b.y() + c.rb);
-    const int v0 = std::max(0, static_cast<int>(std::ceil(top))), v1 = std::min(mask->height() - 1, static_cast<int>(std::floor(bottom)));
+    const int v0 = std::max(0, CeilInt(top)), v1 = std::min(mask->height() - 1, FloorInt(bottom));
+    if (v1 < v0) continue;
+    struct Edge {
+      double y0, y1, x0, slope;
+    } edges[4];
+    int num_edges = 0;
+    if (quad) {
+      for (int e = 0; e < 4; ++e) {
+        const Eigen::Vector2d& p = q[e];
+        const Eigen::Vector2d& s = q[(e + 1) & 3];
+        if (p.y() == s.y()) continue;
+        const Eigen::Vector2d& lo = p.y() < s.y() ? p : s;
+        const Eigen::Vector2d& hi = p.y() < s.y() ? s : p;
+        edges[num_edges++] = {lo.y(), hi.y(), lo.x(), (hi.x() - lo.x()) / (hi.y() - lo.y())};
+      }
+    }
+    const double ra2 = c.ra * c.ra, rb2 = c.rb * c.rb;
+    const int last_column = mask->width() - 1;
+    int drawn_first = mask->height(), drawn_last = -1;
     for (int v = v0; v <= v1; ++v) {
-      double left = 1e300, right = -1e300, l, r;
-      if (DiscSpan(c.a, c.ra, v, &l, &r)) left = std::min(left, l), right = std::max(right, r);
-      if (DiscSpan(c.b, c.rb, v, &l, &r)) left = std::min(left, l), right = std::max(right, r);
-      if (quad) {
-        for (int e = 0; e < 4; ++e) {
-          const Eigen::Vector2d& p = q[e];
-          const Eigen::Vector2d& s = q[(e + 1) & 3];
-          if ((p.y() <= v && s.y() >= v) || (s.y() <= v && p.y() >= v)) {
-            const double x = s.y() == p.y() ? p.x() : p.x() + (v - p.y()) * (s.x() - p.x()) / (s.y() - p.y());
-            left = std::min(left, x);
-            right = std::max(right, x);
-            if (s.y() == p.y()) left = std::min(left, s.x()), right = std::max(right, s.x());
-          }
-        }
+      double left = 1e300, right = -1e300;
+      const double da = v - c.a.y(), ha2 = ra2 - da * da;
+      if (ha2 >= 0) {
+        const double h = std::sqrt(ha2);
+        left = c.a.x() - h, right = c.a.x() + h;
+      }
+      const double db = v - c.b.y(), hb2 = rb2 - db * db;
+      if (hb2 >= 0) {
+        const double h = std::sqrt(hb2);
+        left = std::min(left, c.b.x() - h), right = std::max(right, c.b.x() + h);
+      }
+      for (int e = 0; e < num_edges; ++e) {
+        const Edge& edge = edges[e];
+        if (v < edge.y0 || v > edge.y1) continue;
+        const double x = edge.x0 + (v - edge.y0) * edge.slope;
+        left = std::min(left, x), right = std::max(right, x);
       }
       if (right < left) continue;
-      mask->SetSpan(v, static_cast<int>(std::ceil(left)), static_cast<int>(std::floor(right)));
+      const int x0 = std::max(0, CeilInt(left)), x1 = std::min(last_column, FloorInt(right));
+      if (x1 < x0) continue;
+      mask->SetSpanUnchecked(v, x0, x1);
+      drawn_first = std::min(drawn_first, v), drawn_last = v;
     }
+    if (drawn_last >= 0) mask->MarkRows(drawn_first, drawn_last);
     if (outline) {
       auto segment = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
         const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / outline_step_px)));

@@ -5,6 +5,7 @@
 // AND + popcount word operations, instead of per-pixel fills and counts.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,26 @@ class BitMask {
   const uint64_t* row(int v) const { return &bits_[static_cast<size_t>(v) * words_]; }
   // Sets pixels [x0, x1] of row v (clipped to the image; nothing when x1 < x0).
   void SetSpan(int v, int x0, int x1);
+  // The fast path of SetSpan for a row inside the image and 0 <= x0 <= x1 < width, which
+  // leaves first_row()/last_row() to a MarkRows call for the whole batch of rows.
+  void SetSpanUnchecked(int v, int x0, int x1) {
+    uint64_t* row = &bits_[static_cast<size_t>(v) * words_];
+    const int w0 = x0 >> 6, w1 = x1 >> 6;
+    const uint64_t first = ~uint64_t{0} << (x0 & 63);
+    const uint64_t last = ~uint64_t{0} >> (63 - (x1 & 63));
+    if (w0 == w1) {
+      row[w0] |= first & last;
+      return;
+    }
+    row[w0] |= first;
+    for (int w = w0 + 1; w < w1; ++w) row[w] = ~uint64_t{0};
+    row[w1] |= last;
+  }
+  // Widens [first_row(), last_row()) to hold rows [v0, v1] (0 <= v0 <= v1 < height).
+  void MarkRows(int v0, int v1) {
+    if (first_row_ == last_row_) first_row_ = v0, last_row_ = v1 + 1;
+    else first_row_ = std::min(first_row_, v0), last_row_ = std::max(last_row_, v1 + 1);
+  }
   // Rows [first, last) that hold set pixels (first == last: none).
   int first_row() const { return first_row_; }
   int last_row() const { return last_row_; }

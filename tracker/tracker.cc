@@ -242,12 +242,18 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     return out;
   }
   const std::vector<cv::Rect> regions = Regions(nullptr);
-  std::vector<CameraObservation> observations;
-  for (size_t c = 0; c < frame.masks.size(); ++c) observations.push_back(likelihood_.Observe(frame.masks[c], regions[c]));
+  // Each camera's mask prepared on its own thread (hole filling and the distance transform
+  // take about a millisecond per camera).
+  std::vector<CameraObservation> observations(frame.masks.size());
+  pool_.For(static_cast<int>(frame.masks.size()), [&](int begin, int end, int) {
+    for (int c = begin; c < end; ++c) observations[c] = likelihood_.Observe(frame.masks[c], regions[c]);
+  });
   const AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (fresh_) mirror_evidence_ = 0;
   fresh_ = false;
   out.state = report.estimate;
+  out.ess = report.ess;
+  out.evaluations = report.evaluations;
   if (model_.HasManifold() && options_.space == StateSpace::kModel) {
     // Which leg is forward: the estimate against itself half a cycle on.
     Eigen::VectorXd mirror = out.state;
@@ -263,8 +269,6 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       mirror_evidence_ = 0;
     }
   }
-  out.ess = report.ess;
-  out.evaluations = report.evaluations;
   Exact(out.state, &out.pose_deg, &out.joints_mm);
   out.prior_joints_mm = out.joints_mm;
   const PlacementIndex p = state_model_->placement();

@@ -53,7 +53,7 @@ struct TrackerOptions {
   StateSpace space = StateSpace::kModel;
   int threads = 1;
   int start_frames = 15;          // frames looked at to find the person and their heading
-  int start_particle_factor = 4;  // the first frame's particles, times annealing.particles
+  int start_particle_factor = 4;  // the first frame's first layer: annealing.particles times this
   int start_layers = 8;           // and its layers
   double lost_iou = 0.2;          // an estimate explaining less than this (mean IoU)...
   int lost_frames = 5;            // ...for this many frames is lost

@@ -24,6 +24,13 @@ TEST(Cholesky, MatchesEigen) {
     EXPECT_LT((chol.Solve(b) - llt.solve(b)).norm(), 1e-9 * b.norm());
     EXPECT_NEAR(chol.LogDeterminant(), 2 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum(), 1e-8 * n);
     EXPECT_LT((k * chol.Inverse() - Eigen::MatrixXd::Identity(n, n)).norm(), 1e-9 * n);
+    // Half solves, for a matrix and for a vector: L x = b and L^T x = b with L from LLT.
+    const Eigen::MatrixXd l = llt.matrixL().toDenseMatrix();
+    const Eigen::VectorXd v = Eigen::VectorXd::Random(n);
+    EXPECT_LT((l * chol.HalfSolve(b) - b).norm(), 1e-9 * b.norm());
+    EXPECT_LT((l * chol.HalfSolve(v) - v).norm(), 1e-9 * v.norm());
+    EXPECT_LT((l.transpose() * chol.HalfSolveTransposed(b) - b).norm(), 1e-9 * b.norm());
+    EXPECT_LT((l.transpose() * chol.HalfSolveTransposed(v) - v).norm(), 1e-9 * v.norm());
   }
 }
 

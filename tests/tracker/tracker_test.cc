@@ -172,6 +172,26 @@ TEST(Tracker, TracksAWalkAndNotItsShuffledMasks) {
   EXPECT_GT(bad.errors->bodytrack14.absolute_mm, 300);
 }
 
+// Every likelihood evaluation is counted: without the refinement, a tracked frame costs
+// particles x layers and the two scores of the mirror test; the first frame weighs
+// start_particle_factor times the particles in its first layer, then the usual number in
+// each of its other start_layers - 1 layers.
+TEST(Tracker, CountsEveryEvaluation) {
+  const Fixture& f = Shared();
+  TrackJobOptions job = Job(f.clip, 2);
+  job.tracker.refinement.enabled = false;
+  job.max_frames = 6;
+  const TrackJobResult result = RunTrackJob(job);
+  const AnnealingOptions& a = job.tracker.annealing;
+  ASSERT_EQ(result.run.frames.size(), 6u);
+  for (const TrackedFrame& frame : result.run.frames) {
+    if (frame.status != TrackStatus::kTracked) continue;
+    const int expected = frame.index == 0 ? a.particles * (job.tracker.start_particle_factor + job.tracker.start_layers - 1) + 2
+                                          : a.particles * a.layers + 2;
+    EXPECT_EQ(frame.evaluations, expected) << "frame " << frame.index;
+  }
+}
+
 TEST(Tracker, OneSeedGivesTheSameResultWithAnyThreads) {
   const Fixture& f = Shared();
   test::TempDir out;

@@ -132,7 +132,7 @@ void RunBench(BenchArguments a) {
   batch.Add(out / "track.csv", TrackBenchCsv(rows));
   batch.Add(out / "track.png", EncodePng(TrackBenchPlot(rows), "track.png"));
   if (!a.no_budget && std::filesystem::exists(clip_folder / a.budget_clip / "ground_truth.json")) {
-    const std::vector<std::pair<int, int>> budgets = {{50, 3}, {100, 3}, {100, 4}, {200, 4}, {400, 4}, {800, 5}};
+    const std::vector<std::pair<int, int>> budgets = {{50, 2}, {50, 3}, {100, 3}, {100, 4}, {200, 4}, {400, 4}, {800, 4}, {1600, 5}};
     const std::vector<BudgetPoint> points =
         RunBudgetCurve(clip_folder / a.budget_clip, a.bench.models[0], budgets, a.bench);
     std::string csv = "clip,model,particles,layers,bt14_mm,fps\n";
