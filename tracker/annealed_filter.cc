@@ -48,8 +48,8 @@ void AnnealedFilter::Initialise(const InitialGuess& guess, int count, int frame)
   });
 }
 
-void AnnealedFilter::Shift(int dimension, double offset) {
-  for (int i = 0; i < particles_.rows(); ++i) {
+void AnnealedFilter::Shift(int dimension, double offset, int every) {
+  for (int i = every - 1; i < particles_.rows(); i += every) {
     particles_(i, dimension) += offset;
     model_.Normalise(particles_.row(i).data());
   }

@@ -67,7 +67,7 @@ class AnnealedFilter {
 
   const StateMatrix& particles() const { return particles_; }
   // Adds `offset` to one coordinate of every particle (then normalises them).
-  void Shift(int dimension, double offset);
+  void Shift(int dimension, double offset, int every = 1);
   // The particles' mean (they are equally weighted between frames), periodic coordinates
   // about the first particle.
   Eigen::VectorXd Mean() const;

@@ -1,5 +1,7 @@
 #include "tracker/tracker.h"
 
+
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -45,6 +47,10 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (!(lost_iou >= 0 && lost_iou < 1)) problem = "lost_iou must be in [0, 1)";
   else if (lost_frames < 1) problem = "lost_frames must be >= 1";
   else if (!(region_margin >= 0 && region_margin <= 10)) problem = "region_margin must be in [0, 10]";
+  else if (!(mirror_margin >= 0)) problem = "mirror_margin must be >= 0";
+  else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
+  else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
+  else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
   if (problem) {
     if (why) *why = problem;  // `why` may be null
     return false;
@@ -105,6 +111,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
 
 Tracker::~Tracker() = default;
 
+
 bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const {
   std::vector<PersonSighting> sightings;
   std::vector<double> times;
@@ -155,6 +162,8 @@ void Tracker::StartAt(const InitialGuess& guess) {
   filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, 0);
   started_ = true;
   fresh_ = true;
+  // A start that knows the pose (--init truth) knows which leg is forward.
+  frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
   bad_frames_ = 0;
   start_boxes_.clear();
 }
@@ -231,6 +240,10 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   const double dt = fresh_ ? 0.0 : frame.time_s - last_time_s_;
   if (!fresh_) filter_->Predict(dt, frame.index);
+  if (!fresh_ && !frame.dropped && options_.mirror_every > 0 && frames_since_start_ < options_.mirror_frames &&
+      model_.HasManifold() && options_.space == StateSpace::kModel)
+    filter_->Shift(0, 0.5, options_.mirror_every);
+  ++frames_since_start_;
   if (frame.dropped) {
     out.status = TrackStatus::kPredicted;
     out.state = filter_->Mean();
@@ -249,7 +262,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     for (int c = begin; c < end; ++c) observations[c] = likelihood_.Observe(frame.masks[c], regions[c]);
   });
   const AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
-  if (fresh_) mirror_evidence_ = 0;
+  if (fresh_) mirror_evidence_ = 0, mirror_streak_ = 0;
   fresh_ = false;
   out.state = report.estimate;
   out.ess = report.ess;
@@ -262,11 +275,12 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     const double difference = filter_->Score(out.state.data(), observations, nullptr) -
                               filter_->Score(mirror.data(), observations, nullptr);
     mirror_evidence_ = 0.8 * mirror_evidence_ + difference;
+    mirror_streak_ = difference > 0 ? mirror_streak_ + 1 : 0;
     out.evaluations += 2;
-    if (mirror_evidence_ > options_.mirror_margin) {
+    if (mirror_evidence_ > options_.mirror_margin && mirror_streak_ >= options_.mirror_streak) {
       filter_->Shift(0, 0.5);
       out.state = mirror;
-      mirror_evidence_ = 0;
+      mirror_evidence_ = 0, mirror_streak_ = 0;
     }
   }
   Exact(out.state, &out.pose_deg, &out.joints_mm);
