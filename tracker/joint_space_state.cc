@@ -13,8 +13,9 @@ double WrapAngle(double a) { return a - 2 * kPi * std::floor((a + kPi) / (2 * kP
 
 }  // namespace
 
-JointSpaceStateModel::JointSpaceStateModel(const GaitModel& model)
-    : model_(model),
+JointSpaceStateModel::JointSpaceStateModel(const GaitModel& model, bool known_size)
+    : known_size_(known_size),
+      model_(model),
       channels_(model.NumChannels()),
       placer_(model.skeleton()) {
   const TrainingSet& set = model.data().set;
@@ -69,7 +70,7 @@ void JointSpaceStateModel::Predict(double dt, Random* r, double* s) const {
 Eigen::VectorXd JointSpaceStateModel::DiffusionStd() const {
   Eigen::VectorXd std(Dimension());
   std.head(channels_) = 2 * step_;
-  std.tail(5) << 30, 30, 6 * kDeg, 60, 0.01;
+  std.tail(5) << 30, 30, 6 * kDeg, 60, known_size_ ? 0.0 : 0.01;
   return std;
 }
 
@@ -78,7 +79,7 @@ void JointSpaceStateModel::Normalise(double* s) const {
   const PlacementIndex p = placement();
   s[p.heading] = WrapAngle(s[p.heading]);
   s[p.rate] = std::clamp(s[p.rate], 200.0, 2500.0);
-  s[p.size] = std::clamp(s[p.size], 0.75, 1.3);
+  s[p.size] = known_size_ ? 1.0 : std::clamp(s[p.size], 0.75, 1.3);
 }
 
 double JointSpaceStateModel::Period(int dimension) const {

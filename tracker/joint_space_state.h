@@ -17,8 +17,8 @@ namespace jgpm {
 class JointSpaceStateModel : public StateModel {
  public:
   // Uses the model's skeleton and training poses only (not its latent space); `model`
-  // must outlive this.
-  explicit JointSpaceStateModel(const GaitModel& model);
+  // must outlive this. `known_size`: the skeleton is the subject's own, size stays 1.
+  explicit JointSpaceStateModel(const GaitModel& model, bool known_size = false);
 
   std::string Name() const override { return "joint-space"; }
   int Dimension() const override { return channels_ + 5; }
@@ -33,6 +33,7 @@ class JointSpaceStateModel : public StateModel {
   std::vector<std::string> CoordinateNames() const override;
 
  private:
+  bool known_size_ = false;
   const GaitModel& model_;
   int channels_;
   PosePlacer placer_;

@@ -104,6 +104,7 @@ PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const E
             for (int c : blocks_[b]) poses[i][c] += step * random.Normal();
           } else {
             for (int k = 0; k < 4; ++k) places[i][k] += step * kPlacementStep[k] * random.Normal();
+            if (!options_.refine_size) places[i][3] = placement[3];
           }
           energies[i] = energy(poses[i], places[i].data(), worker);
         }

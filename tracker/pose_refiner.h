@@ -35,6 +35,7 @@ struct RefinementOptions {
   double step_shrink = 0.6;    // per pass
   double floor_deg = 12;       // the prior's standard deviation is at least this
   double temperature = 0.02;   // cost units worth one unit of the prior's penalty
+  bool refine_size = true;     // false: the skeleton is the subject's own (jgpm track --asf)
   double offset_rate = 0.15;   // how fast the running posture offset follows each frame's
 
   bool Check(std::string* why) const;

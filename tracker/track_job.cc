@@ -13,6 +13,7 @@
 #include "io/json_file.h"
 #include "io/output_batch.h"
 #include "io/output_folder.h"
+#include "io/text_reader.h"
 #include "prior/inference.h"
 #include "prior/model_file.h"
 #include "prior/png_file.h"
@@ -85,9 +86,23 @@ InitialGuess TruthGuess(const ClipGroundTruth& truth, const GaitModel& model, co
   return guess;
 }
 
+std::unique_ptr<GaitModel> ModelOnSkeleton(const GaitModel& model, const std::string& asf) {
+  GaitModelData data = model.data();
+  data.skeleton_asf = ReadTextFile(asf, "the subject's skeleton (ASF)");
+  ParseAsf(data.skeleton_asf, asf);  // errors name the file itself
+  data.skeleton_trial = fs::path(asf).stem().string();
+  // Create parses the ASF and checks that the model's channels fit its bones and dofs.
+  return GaitModel::Create(std::move(data), asf);
+}
+
 TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(const TrackedFrame&, int total)>& progress) {
   // Everything that can be refused is, before the long part.
-  const std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
+  std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
+  TrackerOptions tracker_options = o.tracker;
+  if (!o.asf.empty()) {
+    model = ModelOnSkeleton(*model, o.asf);
+    tracker_options.known_size = true;
+  }
   ClipFrameSourceOptions source_options;
   source_options.cameras = o.cameras;
   source_options.exact_masks = o.exact_masks;
@@ -96,7 +111,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(co
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
 
-  Tracker tracker(*model, source.cameras(), o.tracker);
+  Tracker tracker(*model, source.cameras(), tracker_options);
   TrackJobResult result;
   TrackRun& run = result.run;
   run.model_path = o.model;
@@ -106,7 +121,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(co
   run.state_space = tracker.state_model().Name();
   run.cameras = source.cameras();
   run.fps = source.fps();
-  run.options = o.tracker;
+  run.options = tracker_options;
 
   if (o.truth_start) {
     tracker.StartAt(TruthGuess(source.truth(), *model, tracker.state_model()));

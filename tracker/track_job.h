@@ -17,6 +17,9 @@ namespace jgpm {
 
 struct TrackJobOptions {
   std::string model;               // model file
+  std::string asf;                 // the subject's skeleton (ASF), when known: the model's
+                                   // poses are placed on it at size 1 (empty: the model's
+                                   // own skeleton, scaled to the person's estimated size)
   std::string clip;                // clip folder (tracker/clip_format.h)
   std::string out;                 // results folder; empty: write nothing
   std::vector<int> cameras;        // the clip's cameras to use; empty: all
@@ -37,6 +40,10 @@ struct TrackJobResult {
 // `progress` (may be empty) gets each tracked frame and the number of frames.
 TrackJobResult RunTrackJob(const TrackJobOptions& options,
                            const std::function<void(const TrackedFrame&, int total)>& progress = {});
+
+// The model with its reference skeleton replaced by the ASF file's (same bones and dofs,
+// other lengths); InputError naming the file when the channels do not fit it.
+std::unique_ptr<GaitModel> ModelOnSkeleton(const GaitModel& model, const std::string& asf);
 
 // The guess a clip's truth gives at frame 0 for a model's state model: the true root,
 // heading and size, and (when the model can say) the state coordinates of the true pose.

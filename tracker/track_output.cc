@@ -77,7 +77,8 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
   for (const Camera& c : run.cameras) cameras.push_back(c.name);
   out["cameras"] = cameras;
   out["options"] = {{"particles", run.options.annealing.particles}, {"layers", run.options.annealing.layers},
-                    {"seed", run.options.annealing.seed}, {"latent_prior", run.options.annealing.latent_prior}};
+                    {"seed", run.options.annealing.seed}, {"latent_prior", run.options.annealing.latent_prior},
+                    {"known_size", run.options.known_size}};
   json names = json::array();
   for (const Bone& b : skeleton.bones) names.push_back(b.name);
   out["joint_names"] = names;

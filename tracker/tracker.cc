@@ -77,20 +77,26 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
   if (!options.Check(&why)) ThrowInputError("tracking options", why);
   if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
   if (options.space == StateSpace::kJointSpace) {
-    state_model_ = std::make_unique<JointSpaceStateModel>(model);
+    state_model_ = std::make_unique<JointSpaceStateModel>(model, options.known_size);
   } else {
     PoseTableOptions table = options.table;
     table.threads = options.threads;
     table_ = std::make_unique<PoseTable>(model, table);
     if (model.HasManifold()) {
-      state_model_ = std::make_unique<ManifoldStateModel>(model, *table_);
+      ManifoldDynamics dynamics;
+      if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;
+      state_model_ = std::make_unique<ManifoldStateModel>(model, *table_, dynamics);
     } else {
-      state_model_ = std::make_unique<LatentStateModel>(model, *table_);
+      LatentDynamics dynamics;
+      if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;
+      state_model_ = std::make_unique<LatentStateModel>(model, *table_, dynamics);
     }
   }
   filter_ = std::make_unique<AnnealedFilter>(*state_model_, likelihood_, body_, options.annealing, &pool_);
   if (options.refinement.enabled && options.space == StateSpace::kModel) {
-    refiner_ = std::make_unique<PoseRefiner>(model, likelihood_, body_, options.refinement, &pool_);
+    RefinementOptions refinement = options.refinement;
+    refinement.refine_size = refinement.refine_size && !options.known_size;
+    refiner_ = std::make_unique<PoseRefiner>(model, likelihood_, body_, refinement, &pool_);
   }
   // The model's height at size 1, over poses spread by the prior.
   const int head = model.skeleton().FindBone("head");
@@ -139,7 +145,9 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const
   const Eigen::Vector2d velocity = det > 1e-9 ? Eigen::Vector2d((n * stp - st * sp) / det) : Eigen::Vector2d::Zero();
   guess->floor_mm = start;
   guess->floor_std_mm = 120;
-  if (!heights.empty()) {
+  if (options_.known_size) {
+    guess->size = 1, guess->size_std = 0;
+  } else if (!heights.empty()) {
     std::sort(heights.begin(), heights.end());
     guess->size = std::clamp(heights[heights.size() / 2] / model_height_mm_, 0.8, 1.25);
     guess->size_std = 0.04;

@@ -57,6 +57,8 @@ struct TrackerOptions {
   PoseTableOptions table;
   RefinementOptions refinement;   // after the search, in joint-angle space (not for joint-space)
   StateSpace space = StateSpace::kModel;
+  bool known_size = false;        // the model's skeleton is the subject's own (jgpm track
+                                  // --asf): size 1, neither estimated nor refined
   int threads = 1;
   int start_frames = 15;          // frames looked at to find the person and their heading
   int start_particle_factor = 4;  // the first frame's first layer: annealing.particles times this

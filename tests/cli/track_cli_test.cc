@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/asf.h"
 #include "io/json_file.h"
 #include "test_support.h"
 
@@ -162,6 +163,38 @@ TEST(TrackCli, ACorruptMaskIsOneErrorLineNamingIt) {
   const fs::path png = corrupt / "observed" / "cam1" / "000005.png";
   fs::resize_file(png, fs::file_size(png) / 2);
   ExpectRefused(Track(corrupt, out), out, "000005.png", "truncated mask");
+}
+
+// --asf: the poses are placed on the subject's own skeleton at size 1, so every bone of
+// every tracked frame is as long as the ASF says (the oracle), and a file that is no ASF
+// is refused.
+TEST(TrackCli, TheSubjectsSkeletonPlacesThePoses) {
+  const Fixture& f = Shared();
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out", asf = test::CmuRoot() / "subjects/07/07.asf";
+  const Result r = Track(f.clip, out, "--asf " + asf.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Skeleton skeleton = ReadAsf(asf.string());
+  const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+  EXPECT_EQ(poses["options"]["known_size"], true);
+  ASSERT_EQ(poses["joint_names"].size(), skeleton.bones.size());
+  int checked = 0;
+  for (const auto& frame : poses["frames"]) {
+    if (frame["status"] != "tracked") continue;
+    for (size_t b = 1; b < skeleton.bones.size(); ++b) {
+      const Bone& bone = skeleton.bones[b];
+      if (bone.parent < 0) continue;
+      Eigen::Vector3d from, to;
+      for (int k = 0; k < 3; ++k) from[k] = frame["joints_mm"][bone.parent][k], to[k] = frame["joints_mm"][b][k];
+      // Bone ends are written to 0.01 mm.
+      EXPECT_NEAR((to - from).norm(), bone.length * skeleton.MillimetresPerUnit(), 0.02) << bone.name;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 300);
+  dir.Write("bad.asf", ":version 1.10\n:name x\n");
+  ExpectRefused(Track(f.clip, dir.path() / "out2", "--asf " + (dir.path() / "bad.asf").string()), dir.path() / "out2",
+                "bad.asf", "--asf not a skeleton");
 }
 
 TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {

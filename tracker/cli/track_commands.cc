@@ -157,6 +157,8 @@ void AddTrackCommands(CLI::App& app) {
   CLI::App* track = app.add_subcommand("track", "Track a walking person's 3-D pose in a clip with a gait prior");
   track->add_option("--model", a->job.model, "trained gait model (jgpm train)")->required();
   track->add_option("--clip", a->job.clip, "synthetic clip folder (jgpm render)")->required();
+  track->add_option("--asf", a->job.asf, "the subject's skeleton, when known: poses are placed on it (size not estimated)")
+      ->check(CLI::ExistingFile);
   track->add_option("--out", a->job.out, "new (or empty) folder for poses.json, tracked.bvh/.amc, overlays, track.png")
       ->required();
   track->add_option("--cameras", a->cameras, "the clip's cameras to use, e.g. 0,2 (default: all)");
