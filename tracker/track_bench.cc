@@ -122,9 +122,11 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
     std::string name;
     StateSpace space;
     bool latent_prior;
+    bool known_skeleton = false;
   };
   std::vector<Method> methods;
   for (size_t m = 0; m < models.size(); ++m) methods.push_back({static_cast<int>(m), "prior", StateSpace::kModel, true});
+  if (options.known_skeleton) methods.push_back({0, "known-skeleton", StateSpace::kModel, true, true});
   if (options.no_latent_prior) methods.push_back({0, "no-latent-prior", StateSpace::kModel, false});
   if (options.joint_space) methods.push_back({0, "joint-space", StateSpace::kJointSpace, true});
   std::vector<TrackBenchRow> rows;
@@ -156,6 +158,12 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
         job.tracker.space = method.space;
         job.tracker.annealing.latent_prior = method.latent_prior;
         job.tracker.annealing.seed = static_cast<uint64_t>(seed);
+        if (method.known_skeleton) {
+          if (truth.source_asf.empty() || !fs::exists(truth.source_asf))
+            ThrowInputError(ClipPaths{dir}.GroundTruth().string(),
+                            "names no readable source ASF for the known-skeleton run ('" + truth.source_asf + "')");
+          job.asf = truth.source_asf;
+        }
         Add(&row, RunTrackJob(job), *models[method.model], truth);
       }
       Average(&row);

@@ -24,6 +24,9 @@ struct TrackBenchOptions {
   std::vector<std::string> models;  // model files
   bool joint_space = true;          // the classic baseline (on the first model's skeleton)
   bool no_latent_prior = true;      // the first model without p(x|M)
+  bool known_skeleton = true;       // the first model on the subject's own skeleton (the
+                                    // clip's source ASF, as jgpm track --asf): what the
+                                    // floor assumes, so search / floor compares like with like
   int seeds = 2;
   int max_frames = 0;               // per clip; 0: all
   TrackerOptions tracker;

@@ -91,7 +91,7 @@ struct BenchArguments {
   std::string clips;
   std::string data;
   std::string budget_clip = "07_01-4cam";
-  std::vector<std::string> baselines = {"joint-space", "no-latent-prior"};
+  std::vector<std::string> baselines = {"joint-space", "no-latent-prior", "known-skeleton"};
   bool no_budget = false;
   int threads = 0;
   TrackBenchOptions bench;
@@ -104,6 +104,7 @@ void RunBench(BenchArguments a) {
   const auto asked = [&a](const char* name) { return std::find(a.baselines.begin(), a.baselines.end(), name) != a.baselines.end(); };
   a.bench.joint_space = asked("joint-space");
   a.bench.no_latent_prior = asked("no-latent-prior");
+  a.bench.known_skeleton = asked("known-skeleton");
   a.bench.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   {
     std::error_code ec;
@@ -119,10 +120,10 @@ void RunBench(BenchArguments a) {
   const std::vector<TrackBenchRow> rows =
       RunTrackBench(clips, clip_folder, a.bench, [&line](const TrackBenchRow& r, int done, int total) {
         line.Finish();
-        std::printf("%-22s %-16s %-16s %6.1f mm (14 joints; search alone %5.1f; floor %5.1f), 17 joints root-relative "
-                    "%5.1f, %4.1f%% failed, %4.1f%% swapped, %6.1f frames/s\n",
-                    r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.bt14_mm, r.search_bt14_mm, r.floor_bt14_root_mm,
-                    r.g17_root_mm, 100 * r.failure_rate, 100 * r.swap_rate, r.fps);
+        std::printf("%-20s %-13s %-15s 14 joints %5.1f mm | 17 joints root-relative %5.1f, search alone %5.1f, "
+                    "floor %5.1f | %4.1f%% failed, %4.1f%% swapped | %5.1f frames/s\n",
+                    r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.bt14_mm, r.g17_root_mm, r.search_g17_root_mm,
+                    r.floor_g17_root_mm, 100 * r.failure_rate, 100 * r.swap_rate, r.fps);
         std::fflush(stdout);
         line.Update(done, total, "runs");
       });
@@ -207,8 +208,10 @@ void AddTrackCommands(CLI::App& app) {
   track_bench->add_option("--threads", b->threads, "threads (0: all cores)")->check(CLI::Range(0, 256));
   track_bench->add_option("--budget-clip", b->budget_clip, "the clip of the accuracy-versus-budget curve")
       ->capture_default_str();
-  track_bench->add_option("--baseline", b->baselines, "baselines run beside the models (repeat; 'none' for none)")
-      ->check(CLI::IsMember({"joint-space", "no-latent-prior", "none"}))
+  track_bench->add_option("--baseline", b->baselines,
+                          "runs beside the models (repeat; 'none' for none): joint-space (no learned prior), "
+                          "no-latent-prior, known-skeleton (the first model on the subject's own ASF)")
+      ->check(CLI::IsMember({"joint-space", "no-latent-prior", "known-skeleton", "none"}))
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->callback([b] { RunBench(*b); });
