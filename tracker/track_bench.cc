@@ -228,7 +228,9 @@ cv::Mat TrackBenchPlot(const std::vector<TrackBenchRow>& rows) {
     cv::rectangle(image, {at.x, at.y - 10}, {at.x + 12, at.y + 2}, Colour(static_cast<int>(s)), cv::FILLED);
     Text(image, series[s], {at.x + 18, at.y});
   }
-  Text(image, "black tick: the model's floor (its best poses for the true ones, root-relative)", {left, height - 10}, 0.4);
+  const int legend_rows = static_cast<int>((series.size() + 2) / 3);
+  Text(image, "black tick: the model's floor (its best poses for the true ones, root-relative)",
+       {left, base + 50 + 20 * legend_rows + 8}, 0.4);
   return image;
 }
 
@@ -263,8 +265,8 @@ cv::Mat BudgetPlot(const std::vector<BudgetPoint>& points, const std::string& cl
     const char* label;
     double fps, mm;
   } peer[] = {{"4000x5", 3.3, 41.5}, {"1000x5", 12.7, 52.8}, {"500x5", 21, 56.5}, {"250x5", 43, 71.8}, {"100x3", 95, 93.8}};
-  const int width = 760, height = 440, left = 60, bottom = 60, top_margin = 40;
-  cv::Mat image(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int width = 760, height = 440, left = 60, bottom = 60, top_margin = 40, legend = 36;
+  cv::Mat image(height + legend, width, CV_8UC3, cv::Scalar(255, 255, 255));  // legend under the axis
   double max_mm = 100, max_fps = 100;
   for (const BudgetPoint& p : points) max_mm = std::max(max_mm, p.bt14_mm), max_fps = std::max(max_fps, p.fps);
   max_mm = std::ceil(max_mm / 25) * 25;
@@ -303,8 +305,9 @@ cv::Mat BudgetPlot(const std::vector<BudgetPoint>& points, const std::string& cl
     Text(image, std::to_string(points[i].particles) + "x" + std::to_string(points[i].layers),
          to_pixel(points[i].fps, points[i].bt14_mm) + cv::Point(6, 14), 0.35, cv::Scalar(180, 110, 30));
   }
-  Text(image, "jgpm (blue)", {width - 230, height - 36}, 0.45, cv::Scalar(180, 110, 30));
-  Text(image, "PARSEC bodytrack, started from the truth (red)", {width - 400, height - 36 + 16}, 0.4, cv::Scalar(60, 60, 200));
+  Text(image, "jgpm, automatic start (blue)", {left, height + 12}, 0.45, cv::Scalar(180, 110, 30));
+  Text(image, "PARSEC bodytrack, started from the truth (red, ../shared/docs/TRACKER.md)", {left, height + 30}, 0.45,
+       cv::Scalar(60, 60, 200));
   return image;
 }
 

@@ -91,6 +91,7 @@ struct BenchArguments {
   std::string clips;
   std::string data;
   std::string budget_clip = "07_01-4cam";
+  int budget_seeds = 4;
   std::vector<std::string> baselines = {"joint-space", "no-latent-prior", "known-skeleton"};
   bool no_budget = false;
   int threads = 0;
@@ -134,8 +135,10 @@ void RunBench(BenchArguments a) {
   batch.Add(out / "track.png", EncodePng(TrackBenchPlot(rows), "track.png"));
   if (!a.no_budget && std::filesystem::exists(clip_folder / a.budget_clip / "ground_truth.json")) {
     const std::vector<std::pair<int, int>> budgets = {{50, 2}, {50, 3}, {100, 3}, {100, 4}, {200, 4}, {400, 4}, {800, 4}, {1600, 5}};
+    TrackBenchOptions budget_options = a.bench;
+    budget_options.seeds = a.budget_seeds;  // single swaps move one seed's mean by tens of mm
     const std::vector<BudgetPoint> points =
-        RunBudgetCurve(clip_folder / a.budget_clip, a.bench.models[0], budgets, a.bench);
+        RunBudgetCurve(clip_folder / a.budget_clip, a.bench.models[0], budgets, budget_options);
     std::string csv = "clip,model,particles,layers,bt14_mm,fps\n";
     for (const BudgetPoint& p : points) {
       char row[256];
@@ -212,6 +215,9 @@ void AddTrackCommands(CLI::App& app) {
                           "runs beside the models (repeat; 'none' for none): joint-space (no learned prior), "
                           "no-latent-prior, known-skeleton (the first model on the subject's own ASF)")
       ->check(CLI::IsMember({"joint-space", "no-latent-prior", "known-skeleton", "none"}))
+      ->capture_default_str();
+  track_bench->add_option("--budget-seeds", b->budget_seeds, "runs per budget (seeds 1..N), averaged")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->callback([b] { RunBench(*b); });
