@@ -7,6 +7,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
+#include "test_support.h"
+#include <zlib.h>
 
 namespace jgpm {
 namespace {
@@ -17,6 +19,79 @@ std::vector<uint8_t> EncodedMask(cv::Mat* mask) {
   std::vector<uint8_t> bytes;
   EXPECT_TRUE(cv::imencode(".png", *mask, bytes));
   return bytes;
+}
+
+// A grey 8-bit PNG written by hand (chunks in `order`, Adam7 when `interlaced`), so that
+// files with valid CRCs but a wrong structure can be made.
+void Chunk(std::vector<uint8_t>* png, const std::string& type, const std::vector<uint8_t>& data) {
+  const uint32_t n = static_cast<uint32_t>(data.size());
+  for (int s = 24; s >= 0; s -= 8) png->push_back(static_cast<uint8_t>(n >> s));
+  std::vector<uint8_t> body(type.begin(), type.end());
+  body.insert(body.end(), data.begin(), data.end());
+  png->insert(png->end(), body.begin(), body.end());
+  const uint32_t crc = static_cast<uint32_t>(crc32(crc32(0L, Z_NULL, 0), body.data(), static_cast<uInt>(body.size())));
+  for (int s = 24; s >= 0; s -= 8) png->push_back(static_cast<uint8_t>(crc >> s));
+}
+std::vector<uint8_t> HandMadePng(const cv::Mat& grey, bool interlaced, const std::string& order = "H D E",
+                                 uint8_t filter = 0) {
+  const int w = grey.cols, h = grey.rows;
+  std::vector<uint8_t> raw;
+  const int passes[7][4] = {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4}, {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
+  for (int p = 0; p < (interlaced ? 7 : 1); ++p) {
+    const int x0 = interlaced ? passes[p][0] : 0, y0 = interlaced ? passes[p][1] : 0;
+    const int dx = interlaced ? passes[p][2] : 1, dy = interlaced ? passes[p][3] : 1;
+    if (x0 >= w || y0 >= h) continue;
+    for (int y = y0; y < h; y += dy) {
+      raw.push_back(filter);
+      for (int x = x0; x < w; x += dx) raw.push_back(grey.at<uint8_t>(y, x));
+    }
+  }
+  std::vector<uint8_t> idat(compressBound(static_cast<uLong>(raw.size())));
+  uLongf size = static_cast<uLongf>(idat.size());
+  EXPECT_EQ(compress(idat.data(), &size, raw.data(), static_cast<uLong>(raw.size())), Z_OK);
+  idat.resize(size);
+  const std::vector<uint8_t> ihdr = {0, 0, static_cast<uint8_t>(w >> 8), static_cast<uint8_t>(w), 0, 0,
+                                     static_cast<uint8_t>(h >> 8), static_cast<uint8_t>(h), 8, 0, 0, 0,
+                                     static_cast<uint8_t>(interlaced)};
+  std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  for (const char c : order) {
+    if (c == 'H') Chunk(&png, "IHDR", ihdr);
+    if (c == 'D') Chunk(&png, "IDAT", idat);
+    if (c == 'h') Chunk(&png, "IDAT", std::vector<uint8_t>(idat.begin(), idat.begin() + idat.size() / 2));
+    if (c == 'i') Chunk(&png, "IDAT", std::vector<uint8_t>(idat.begin() + idat.size() / 2, idat.end()));
+    if (c == 'T') Chunk(&png, "tEXt", {'a', 0, 'b'});
+    if (c == 'E') Chunk(&png, "IEND", {});
+  }
+  return png;
+}
+
+TEST(MaskPng, HandMadeFilesPlainAndInterlacedDecode) {
+  cv::Mat mask;
+  EncodedMask(&mask);
+  for (const bool interlaced : {false, true}) {
+    for (const char* order : {"H D E", "H h i E", "H T D E", "H D T E"}) {
+      const cv::Mat back = DecodeMaskPng(HandMadePng(mask, interlaced, order), "m.png", 32, 24);
+      EXPECT_EQ(cv::countNonZero(back != mask), 0) << interlaced << " " << order;
+    }
+  }
+}
+
+// Found by tests/fuzz/mask_png_fuzzer: files whose CRCs are right but whose structure is
+// not made libpng print its own line before ours.
+TEST(MaskPng, ValidChunksInAWrongStructureAreRefused) {
+  cv::Mat mask;
+  EncodedMask(&mask);
+  const struct {
+    const char* order;
+    uint8_t filter;
+    const char* phrase;
+  } cases[] = {{"H E", 0, "no image data"},        {"H h T i E", 0, "IDAT chunks apart"},
+               {"H D H E", 0, "a second IHDR"},    {"D H E", 0, "not IHDR"},
+               {"H h E", 0, "not a complete zlib"}, {"H D E", 7, "row filter 7"}};
+  for (const auto& c : cases) {
+    test::ExpectInputError([&] { DecodeMaskPng(HandMadePng(mask, false, c.order, c.filter), "s.png", 32, 24); },
+                           {"s.png: corrupt PNG", c.phrase});
+  }
 }
 
 TEST(MaskPng, AWholeFileDecodesToTheMaskWritten) {
