@@ -1,5 +1,6 @@
 #include "tracker/mask_png.h"
 
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -40,6 +41,12 @@ void CheckPngFile(const std::vector<uint8_t>& bytes, const std::string& source) 
     const uint32_t stored = BigEndian(&bytes[at + 8 + length]);
     const uint32_t computed = static_cast<uint32_t>(crc32(crc32(0L, Z_NULL, 0), &bytes[at + 4], length + 4));
     if (stored != computed) corrupt("chunk '" + type + "' at byte " + std::to_string(at) + " fails its CRC");
+    for (const char c : type)
+      if (!std::isalpha(static_cast<unsigned char>(c))) corrupt("a chunk type that is not 4 letters at byte " + std::to_string(at));
+    // Critical chunks (capital first letter) must be known; others may be skipped.
+    if (std::isupper(static_cast<unsigned char>(type[0])) && type != "IHDR" && type != "PLTE" && type != "IDAT" &&
+        type != "IEND")
+      corrupt("unknown critical chunk '" + type + "'");
     const uint8_t* data = &bytes[at + 8];
     if (first != (type == "IHDR")) corrupt(first ? "the first chunk is '" + type + "', not IHDR" : "a second IHDR");
     if (first) header.assign(data, data + length);

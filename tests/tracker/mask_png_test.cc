@@ -60,6 +60,8 @@ std::vector<uint8_t> HandMadePng(const cv::Mat& grey, bool interlaced, const std
     if (c == 'h') Chunk(&png, "IDAT", std::vector<uint8_t>(idat.begin(), idat.begin() + idat.size() / 2));
     if (c == 'i') Chunk(&png, "IDAT", std::vector<uint8_t>(idat.begin() + idat.size() / 2, idat.end()));
     if (c == 'T') Chunk(&png, "tEXt", {'a', 0, 'b'});
+    if (c == 'X') Chunk(&png, "\xff\xff\xff\xff", {});  // its CRC is 0xffffffff, right
+    if (c == 'C') Chunk(&png, "ABCD", {});
     if (c == 'E') Chunk(&png, "IEND", {});
   }
   return png;
@@ -87,7 +89,8 @@ TEST(MaskPng, ValidChunksInAWrongStructureAreRefused) {
     const char* phrase;
   } cases[] = {{"H E", 0, "no image data"},        {"H h T i E", 0, "IDAT chunks apart"},
                {"H D H E", 0, "a second IHDR"},    {"D H E", 0, "not IHDR"},
-               {"H h E", 0, "not a complete zlib"}, {"H D E", 7, "row filter 7"}};
+               {"H h E", 0, "not a complete zlib"}, {"H D E", 7, "row filter 7"},
+               {"H X D E", 0, "not 4 letters"},    {"H C D E", 0, "unknown critical chunk"}};
   for (const auto& c : cases) {
     test::ExpectInputError([&] { DecodeMaskPng(HandMadePng(mask, false, c.order, c.filter), "s.png", 32, 24); },
                            {"s.png: corrupt PNG", c.phrase});
