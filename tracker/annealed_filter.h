@@ -66,7 +66,8 @@ class AnnealedFilter {
   AnnealingReport Update(const std::vector<CameraObservation>& observations, int frame, int layers = 0);
 
   const StateMatrix& particles() const { return particles_; }
-  // Adds `offset` to one coordinate of every particle (then normalises them).
+  // Adds `offset` to one coordinate of every particle, or of every `every`-th one (then
+  // normalises them).
   void Shift(int dimension, double offset, int every = 1);
   // The particles' mean (they are equally weighted between frames), periodic coordinates
   // about the first particle.

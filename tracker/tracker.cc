@@ -1,7 +1,5 @@
 #include "tracker/tracker.h"
 
-
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -116,7 +114,6 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
 }
 
 Tracker::~Tracker() = default;
-
 
 bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const {
   std::vector<PersonSighting> sightings;
