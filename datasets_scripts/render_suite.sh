@@ -2,7 +2,8 @@
 # Renders the tracking benchmark (datasets_scripts/tracking_suite.txt) into OUT_DIR
 # (default build/tracking_suite), one folder per clip; clips already there are kept.
 # Data root: $JGPM_DATA, else ./data/cmu, else ../shared/data/cmu. Extra arguments go to
-# every `jgpm render` (e.g. --max-frames 10 for a quick look).
+# every `jgpm render` (e.g. --max-frames 10 for a quick look). ONLY=NAME renders that clip
+# alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-build/tracking_suite}"
@@ -19,6 +20,7 @@ fi
 mkdir -p "$out"
 while read -r name trial options; do
   case "$name" in ''|'#'*) continue ;; esac
+  if [ -n "${ONLY:-}" ] && [ "$name" != "$ONLY" ]; then continue; fi
   if [ -f "$out/$name/ground_truth.json" ]; then
     echo "== $name: already rendered"
     continue
