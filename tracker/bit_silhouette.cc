@@ -31,24 +31,8 @@ void BitMask::SetSpan(int v, int x0, int x1) {
   x0 = std::max(x0, 0);
   x1 = std::min(x1, width_ - 1);
   if (x1 < x0) return;
-  if (first_row_ == last_row_) {
-    first_row_ = v;
-    last_row_ = v + 1;
-  } else {
-    first_row_ = std::min(first_row_, v);
-    last_row_ = std::max(last_row_, v + 1);
-  }
-  uint64_t* row = &bits_[static_cast<size_t>(v) * words_];
-  const int w0 = x0 >> 6, w1 = x1 >> 6;
-  const uint64_t first = ~uint64_t{0} << (x0 & 63);
-  const uint64_t last = ~uint64_t{0} >> (63 - (x1 & 63));
-  if (w0 == w1) {
-    row[w0] |= first & last;
-    return;
-  }
-  row[w0] |= first;
-  for (int w = w0 + 1; w < w1; ++w) row[w] = ~uint64_t{0};
-  row[w1] |= last;
+  MarkRows(v, v);
+  SetSpanUnchecked(v, x0, x1);
 }
 
 void BitMask::Clear() {
