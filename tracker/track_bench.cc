@@ -68,6 +68,12 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
   row->g17_procrustes_mm += e.gait17.procrustes_mm;
   row->failure_rate += e.bodytrack14.failure_rate;
   row->swap_rate += e.gait17.swap_rate;
+  row->joints = e.gait17.joints;
+  row->per_joint_mm.resize(e.gait17.per_joint_mm.size(), 0.0);
+  row->per_frame_mm.resize(e.gait17.per_frame_mm.size(), 0.0);
+  for (size_t j = 0; j < e.gait17.per_joint_mm.size(); ++j) row->per_joint_mm[j] += e.gait17.per_joint_mm[j];
+  for (size_t k = 0; k < e.gait17.per_frame_mm.size() && k < row->per_frame_mm.size(); ++k)
+    row->per_frame_mm[k] += e.gait17.per_frame_mm[k];  // NaN stays NaN
   std::vector<Eigen::Matrix3Xd> search, target;
   int lost = 0;
   long evaluations = 0;
@@ -95,6 +101,8 @@ void Average(TrackBenchRow* row) {
                     &row->swap_rate, &row->lost_rate, &row->fps, &row->evaluations_per_frame}) {
     *x /= k;
   }
+  for (double& x : row->per_joint_mm) x /= k;
+  for (double& x : row->per_frame_mm) x /= k;
 }
 
 std::string Stem(const std::string& path) { return fs::path(path).stem().string(); }
@@ -188,6 +196,32 @@ std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows) {
                   r.search_bt14_mm, r.search_g17_root_mm, r.floor_bt14_root_mm, r.floor_g17_root_mm, r.failure_rate,
                   r.swap_rate, r.lost_rate, r.fps, r.evaluations_per_frame);
     csv += line;
+  }
+  return csv;
+}
+
+std::string TrackBenchJointsCsv(const std::vector<TrackBenchRow>& rows) {
+  std::string csv = "clip,model,method,joint,mm\n";
+  char line[256];
+  for (const TrackBenchRow& r : rows) {
+    for (size_t j = 0; j < r.per_joint_mm.size() && j < r.joints.size(); ++j) {
+      std::snprintf(line, sizeof(line), "%s,%s,%s,%s,%.2f\n", r.clip.c_str(), r.model.c_str(), r.method.c_str(),
+                    r.joints[j].c_str(), r.per_joint_mm[j]);
+      csv += line;
+    }
+  }
+  return csv;
+}
+
+std::string TrackBenchFramesCsv(const std::vector<TrackBenchRow>& rows) {
+  std::string csv = "clip,model,method,frame,mm\n";
+  char line[256];
+  for (const TrackBenchRow& r : rows) {
+    for (size_t k = 0; k < r.per_frame_mm.size(); ++k) {
+      std::snprintf(line, sizeof(line), "%s,%s,%s,%zu,%.2f\n", r.clip.c_str(), r.model.c_str(), r.method.c_str(), k,
+                    r.per_frame_mm[k]);
+      csv += line;
+    }
   }
   return csv;
 }

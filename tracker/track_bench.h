@@ -41,6 +41,10 @@ struct TrackBenchRow {
   double failure_rate = 0, swap_rate = 0, lost_rate = 0;
   double fps = 0, evaluations_per_frame = 0;
   double floor_bt14_root_mm = -1, floor_g17_root_mm = -1;         // -1: not applicable
+  // The 17 gait joints' absolute error (refined), averaged over the seeds: per joint, and
+  // per frame (NaN where a seed had no estimate).
+  std::vector<std::string> joints;
+  std::vector<double> per_joint_mm, per_frame_mm;
 };
 
 // Tracks every clip in `folder` (rendered: tracker/tracking_suite.h). `progress` (may be
@@ -50,6 +54,9 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
                                          const std::function<void(const TrackBenchRow&, int done, int total)>& progress = {});
 
 std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows);
+// Long tables of the same runs: clip,model,method,joint,mm and clip,model,method,frame,mm.
+std::string TrackBenchJointsCsv(const std::vector<TrackBenchRow>& rows);
+std::string TrackBenchFramesCsv(const std::vector<TrackBenchRow>& rows);
 // Mean absolute error (14 joints) per clip, one bar per model and method.
 cv::Mat TrackBenchPlot(const std::vector<TrackBenchRow>& rows);
 

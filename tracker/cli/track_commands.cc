@@ -132,6 +132,8 @@ void RunBench(BenchArguments a) {
   OutputBatch batch;
   const std::filesystem::path out(a.out);
   batch.Add(out / "track.csv", TrackBenchCsv(rows));
+  batch.Add(out / "joints.csv", TrackBenchJointsCsv(rows));
+  batch.Add(out / "frames.csv", TrackBenchFramesCsv(rows));
   batch.Add(out / "track.png", EncodePng(TrackBenchPlot(rows), "track.png"));
   if (!a.no_budget && std::filesystem::exists(clip_folder / a.budget_clip / "ground_truth.json")) {
     const std::vector<std::pair<int, int>> budgets = {{50, 2}, {50, 3}, {100, 3}, {100, 4}, {200, 4}, {400, 4}, {800, 4}, {1600, 5}};
@@ -195,7 +197,7 @@ void AddTrackCommands(CLI::App& app) {
       "track", "Track every clip of the tracking suite with every model and the baselines; track.csv and plots");
   track_bench->add_option("--suite", b->suite, "the suite (NAME TRIAL [render options] per line)")->capture_default_str();
   track_bench->add_option("--model", b->bench.models, "model file (repeat for several)")->required();
-  track_bench->add_option("--out", b->out, "folder for track.csv, track.png, budget.csv, budget.png")->required();
+  track_bench->add_option("--out", b->out, "folder for track.csv, joints.csv, frames.csv, track.png, budget.csv, budget.png")->required();
   track_bench->add_option("--clips", b->clips, "where the suite's clips are rendered or found (default: OUT/clips)");
   track_bench->add_option("--data", b->data, "data root (default: $JGPM_DATA, ./data/cmu, ../shared/data/cmu)");
   track_bench->add_option("--seeds", b->bench.seeds, "runs per clip and method (seeds 1..N), averaged")
