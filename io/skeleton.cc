@@ -55,4 +55,10 @@ std::vector<std::string> Skeleton::ChannelNames() const {
   return names;
 }
 
+std::vector<std::string> Skeleton::BoneNames() const {
+  std::vector<std::string> names;
+  for (const Bone& bone : bones) names.push_back(bone.name);
+  return names;
+}
+
 }  // namespace jgpm

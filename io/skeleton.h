@@ -65,6 +65,8 @@ struct Skeleton {
   std::vector<int> ChannelOffsets() const;
   // "lfemur.rx"-style names of the frame vector's values.
   std::vector<std::string> ChannelNames() const;
+  // The bones' names, in skeleton order.
+  std::vector<std::string> BoneNames() const;
 };
 
 }  // namespace jgpm

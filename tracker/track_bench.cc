@@ -20,12 +20,6 @@ namespace jgpm {
 namespace fs = std::filesystem;
 namespace {
 
-std::vector<std::string> BoneNames(const Skeleton& skeleton) {
-  std::vector<std::string> names;
-  for (const Bone& b : skeleton.bones) names.push_back(b.name);
-  return names;
-}
-
 // The model's best poses for the clip's true poses, root-relative on the subject's skeleton:
 // (14-joint, 17-joint) mean error, mm; (-1, -1) when the source trial cannot be read.
 std::pair<double, double> Floor(const GaitModel& model, const ClipGroundTruth& truth, int frames) {
@@ -52,7 +46,7 @@ std::pair<double, double> Floor(const GaitModel& model, const ClipGroundTruth& t
     placer.Relative(a.data(), &estimate[k], &foot);
     placer.Relative(b.data(), &target[k], &foot);
   }
-  const std::vector<std::string> names = BoneNames(skeleton);
+  const std::vector<std::string> names = skeleton.BoneNames();
   return {CompareTracks(estimate, names, target, names, Bodytrack14()).absolute_mm,
           CompareTracks(estimate, names, target, names, Gait17()).absolute_mm};
 }
@@ -83,7 +77,7 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
     lost += f.status == TrackStatus::kLost;
     evaluations += f.evaluations;
   }
-  const std::vector<std::string> names = BoneNames(model.skeleton());
+  const std::vector<std::string> names = model.skeleton().BoneNames();
   row->search_bt14_mm += CompareTracks(search, names, target, truth.joint_names, Bodytrack14()).absolute_mm;
   row->search_g17_root_mm += CompareTracks(search, names, target, truth.joint_names, Gait17()).root_relative_mm;
   const int n = static_cast<int>(r.run.frames.size());
@@ -167,9 +161,9 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
         job.tracker.annealing.latent_prior = method.latent_prior;
         job.tracker.annealing.seed = static_cast<uint64_t>(seed);
         if (method.known_skeleton) {
-          if (truth.source_asf.empty() || !fs::exists(truth.source_asf))
-            ThrowInputError(ClipPaths{dir}.GroundTruth().string(),
-                            "names no readable source ASF for the known-skeleton run ('" + truth.source_asf + "')");
+          // An unreadable ASF is refused by the job, naming it.
+          if (truth.source_asf.empty())
+            ThrowInputError(ClipPaths{dir}.GroundTruth().string(), "names no source ASF for the known-skeleton run");
           job.asf = truth.source_asf;
         }
         Add(&row, RunTrackJob(job), *models[method.model], truth);

@@ -53,8 +53,7 @@ InitialGuess TruthGuess(const ClipGroundTruth& truth, const GaitModel& model, co
   guess.heading_rad = std::atan2(forward.x(), forward.z());
   guess.heading_std_rad = 3 * kPi / 180;
   // Size: the truth's leg against the model's.
-  std::vector<std::string> model_bones;
-  for (const Bone& b : model.skeleton().bones) model_bones.push_back(b.name);
+  const std::vector<std::string> model_bones = model.skeleton().BoneNames();
   Eigen::Matrix3Xd rest;
   const Eigen::VectorXd zero_pose = Eigen::VectorXd::Zero(model.NumChannels());
   PosePlacer(model.skeleton()).Place(zero_pose.data(), 0, 0, 0, 1, &rest);

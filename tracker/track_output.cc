@@ -58,8 +58,7 @@ RunErrors EvaluateRun(const TrackRun& run, const Skeleton& skeleton, const std::
                       const std::vector<std::string>& truth_bones) {
   std::vector<Eigen::Matrix3Xd> estimate;
   for (const TrackedFrame& f : run.frames) estimate.push_back(f.state.size() ? f.joints_mm : Eigen::Matrix3Xd());
-  std::vector<std::string> bones;
-  for (const Bone& b : skeleton.bones) bones.push_back(b.name);
+  const std::vector<std::string> bones = skeleton.BoneNames();
   return {CompareTracks(estimate, bones, truth, truth_bones, Gait17()),
           CompareTracks(estimate, bones, truth, truth_bones, Bodytrack14())};
 }
@@ -79,9 +78,7 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
   out["options"] = {{"particles", run.options.annealing.particles}, {"layers", run.options.annealing.layers},
                     {"seed", run.options.annealing.seed}, {"latent_prior", run.options.annealing.latent_prior},
                     {"known_size", run.options.known_size}};
-  json names = json::array();
-  for (const Bone& b : skeleton.bones) names.push_back(b.name);
-  out["joint_names"] = names;
+  out["joint_names"] = skeleton.BoneNames();
   out["joints_note"] = "joints_mm[j] is the end of bone j (the root: its position), world y up, mm";
   out["measured_joints"] = Gait17();
   out["coordinate_names"] = run.coordinate_names;

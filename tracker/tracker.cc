@@ -90,6 +90,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
       state_model_ = std::make_unique<LatentStateModel>(model, *table_, dynamics);
     }
   }
+  legs_by_phase_ = model.HasManifold() && options.space == StateSpace::kModel;
   filter_ = std::make_unique<AnnealedFilter>(*state_model_, likelihood_, body_, options.annealing, &pool_);
   if (options.refinement.enabled && options.space == StateSpace::kModel) {
     RefinementOptions refinement = options.refinement;
@@ -245,8 +246,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   const double dt = fresh_ ? 0.0 : frame.time_s - last_time_s_;
   if (!fresh_) filter_->Predict(dt, frame.index);
-  if (!fresh_ && !frame.dropped && options_.mirror_every > 0 && frames_since_start_ < options_.mirror_frames &&
-      model_.HasManifold() && options_.space == StateSpace::kModel)
+  if (legs_by_phase_ && !fresh_ && !frame.dropped && options_.mirror_every > 0 &&
+      frames_since_start_ < options_.mirror_frames)
     filter_->Shift(0, 0.5, options_.mirror_every);
   ++frames_since_start_;
   if (frame.dropped) {
@@ -272,7 +273,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   out.state = report.estimate;
   out.ess = report.ess;
   out.evaluations = report.evaluations;
-  if (model_.HasManifold() && options_.space == StateSpace::kModel) {
+  if (legs_by_phase_) {
     // Which leg is forward: the estimate against itself half a cycle on.
     Eigen::VectorXd mirror = out.state;
     mirror[0] += 0.5;

@@ -138,6 +138,8 @@ class Tracker {
   double last_time_s_ = 0;
   int bad_frames_ = 0;
   int frames_since_start_ = 0;
+  // Half a cycle on swaps the legs (a JGPM-family model tracked on its manifold).
+  bool legs_by_phase_ = false;
   double mirror_evidence_ = 0;  // decayed sum of cost(estimate) - cost(half a cycle on)
   int mirror_streak_ = 0;       // frames in a row where half a cycle on fitted better
   double model_height_mm_ = 0;  // floor to top of head at size 1
