@@ -2,7 +2,7 @@
 # datasets_scripts/install_deps.sh installs them.
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(Ceres REQUIRED)
-find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs videoio video calib3d)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs videoio video calib3d highgui)
 find_package(nanoflann REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3.2 REQUIRED)

@@ -5,6 +5,7 @@
 //                            3-D joint positions (mm), and which frames were dropped
 //   camK.yaml                each camera (calibration/camera.h YAML)
 //   camK.avi                 colour video (MJPG): shaded body over a textured room, noise
+//   background/camK.png      the empty room, as a lab records it before the take
 //   masks/camK/NNNNNN.png    exact silhouettes (ray cast), one per kept frame
 //   observed/camK/NNNNNN.png the silhouettes after the mask degradations (the tracker's
 //                            input when it skips background subtraction)
@@ -31,6 +32,7 @@ struct ClipPaths {
   std::filesystem::path GroundTruth() const { return folder / "ground_truth.json"; }
   std::filesystem::path CameraYaml(const std::string& camera) const { return folder / (camera + ".yaml"); }
   std::filesystem::path Video(const std::string& camera) const { return folder / (camera + ".avi"); }
+  std::filesystem::path Background(const std::string& camera) const { return folder / "background" / (camera + ".png"); }
   std::filesystem::path MaskFolder(const std::string& camera) const { return folder / "masks" / camera; }
   std::filesystem::path ObservedFolder(const std::string& camera) const { return folder / "observed" / camera; }
   std::filesystem::path Mask(const std::string& camera, int frame) const;

@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
+#include "io/video_file.h"
 #include "tracker/mask_png.h"
 
 namespace jgpm {
@@ -30,11 +31,29 @@ ClipFrameSource::ClipFrameSource(const std::filesystem::path& folder, const Clip
   }
   num_frames_ = static_cast<int>(truth_.frames.size());
   if (options.max_frames > 0) num_frames_ = std::min(num_frames_, options.max_frames);
-  if (options.with_images) {
+  if (options.foreground) options_.with_images = true;
+  if (options_.with_images) {
     for (const Camera& camera : cameras_) {
       const std::filesystem::path video = paths_.Video(camera.name);
       videos_.emplace_back(video.string());
       if (!videos_.back().isOpened()) ThrowInputError(video.string(), "cannot be opened as a video");
+    }
+  }
+  if (options.foreground) {
+    for (const Camera& camera : cameras_) {
+      extractors_.emplace_back(*options.foreground, camera.width, camera.height);
+      const std::filesystem::path plate = paths_.Background(camera.name);
+      if (!options.learn_background && std::filesystem::exists(plate, ec)) {
+        const cv::Mat image = cv::imread(plate.string(), cv::IMREAD_COLOR);
+        if (image.cols != camera.width || image.rows != camera.height) {
+          ThrowInputError(plate.string(), "is not a " + std::to_string(camera.width) + "x" +
+                                              std::to_string(camera.height) + " image of the empty room");
+        }
+        extractors_.back().SetBackground(image);
+      } else {
+        const std::string video = paths_.Video(camera.name).string();
+        extractors_.back().Learn(VideoFileSource(video).Sample(options.foreground->learning_frames));
+      }
     }
   }
 }
@@ -48,19 +67,24 @@ bool ClipFrameSource::Next(Frame* frame) {
   frame->dropped = f.dropped;
   frame->masks.assign(cameras_.size(), cv::Mat());
   frame->images.assign(options_.with_images ? cameras_.size() : 0, cv::Mat());
+  frame->latency_ms = 0;
   ++next_;
   if (f.dropped) return true;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     const Camera& camera = cameras_[c];
-    const std::filesystem::path path =
-        options_.exact_masks ? paths_.Mask(camera.name, k) : paths_.ObservedMask(camera.name, k);
-    frame->masks[c] = ReadMaskPng(path, camera.width, camera.height);
     if (options_.with_images) {
       cv::Mat image;
       if (!videos_[c].read(image)) ThrowInputError(paths_.Video(camera.name).string(), "ends before frame " +
                                                                                         std::to_string(frame->index));
       frame->images[c] = image;
     }
+    if (!extractors_.empty()) {
+      frame->masks[c] = extractors_[c].Apply(frame->images[c]);
+      continue;
+    }
+    const std::filesystem::path path =
+        options_.exact_masks ? paths_.Mask(camera.name, k) : paths_.ObservedMask(camera.name, k);
+    frame->masks[c] = ReadMaskPng(path, camera.width, camera.height);
   }
   return true;
 }

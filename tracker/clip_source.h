@@ -1,15 +1,18 @@
 // A synthetic clip folder (tracker/clip_format.h) as a frame source: its cameras, each
-// frame's observed masks (or the exact ones) and, when asked, its video frames. The clip's
-// ground truth stays available for evaluation and `--init truth`.
+// frame's observed masks (or the exact ones, or masks computed from its videos by
+// background subtraction, as a real video's would be) and, when asked, its video frames.
+// The clip's ground truth stays available for evaluation and `--init truth`.
 #pragma once
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <opencv2/videoio.hpp>
 
 #include "tracker/clip_format.h"
+#include "tracker/foreground.h"
 #include "tracker/frame_source.h"
 
 namespace jgpm {
@@ -18,6 +21,11 @@ struct ClipFrameSourceOptions {
   std::vector<int> cameras;   // indices into the clip's cameras; empty: all
   bool exact_masks = false;   // masks/ (the exact silhouettes) instead of observed/
   bool with_images = false;   // also decode each camera's video
+  // Masks from each camera's video by this background subtraction (tracker/foreground.h),
+  // instead of the clip's mask files; started from the clip's picture of the empty room
+  // when it has one and `learn_background` is off, else learnt from the video.
+  std::optional<ForegroundOptions> foreground;
+  bool learn_background = false;
   int max_frames = 0;         // 0: all
 };
 
@@ -44,6 +52,7 @@ class ClipFrameSource : public FrameSource {
   std::vector<int> indices_;
   std::vector<Camera> cameras_;
   std::vector<cv::VideoCapture> videos_;
+  std::vector<ForegroundExtractor> extractors_;
   int num_frames_ = 0;
   int next_ = 0;
 };

@@ -1,7 +1,9 @@
-// Where the tracker's frames come from: one interface for a synthetic clip folder, and
-// (next) video files, image folders and a live V4L2 camera. A source knows its cameras
-// and hands out frames in time order; each frame carries every camera's foreground mask,
-// and the colour image when the source has one (for overlays and background subtraction).
+// Where the tracker's frames come from: one interface for a synthetic clip folder
+// (tracker/clip_source.h) and for video files, image folders and live V4L2 cameras
+// (tracker/video_frame_source.h); tracker/frame_source_factory.h makes the one asked for.
+// A source knows its cameras and hands out frames in time order; each frame carries every
+// camera's foreground mask, and the colour image when the source has one (for overlays
+// and background subtraction).
 #pragma once
 
 #include <string>
@@ -18,6 +20,7 @@ struct Frame {
   int index = 0;         // frame number in the source, from 0
   double time_s = 0;     // since the source's first frame
   bool dropped = false;  // nothing was captured: masks and images are empty
+  double latency_ms = 0; // live: from capture until the masks were ready
   std::vector<cv::Mat> masks;   // per camera: CV_8UC1, 255 = foreground
   std::vector<cv::Mat> images;  // per camera: BGR, or empty when the source has none
 };

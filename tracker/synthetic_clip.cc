@@ -234,6 +234,16 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
       ThrowInputError(video_path.string(), "OpenCV cannot write an MJPG video here");
     const RayCaster caster(camera);
     const cv::Mat background = RenderBackground(camera, room);
+    {
+      // The empty room as the camera saw it before anyone walked in, as a lab records it.
+      cv::Mat plate = background.clone(), plate_noise(camera.height, camera.width, CV_32FC3), plate8;
+      cv::RNG plate_rng(options.seed * 104729 + c);
+      plate_rng.fill(plate_noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(deg.sensor_noise));
+      plate += plate_noise;
+      plate.convertTo(plate8, CV_8UC3);
+      fs::create_directories(files.Background(camera.name).parent_path());
+      WriteImage(files.Background(camera.name), plate8);
+    }
     // Each camera's own random stream, so adding a camera does not change the others.
     std::mt19937_64 rng(options.seed * 1000003 + c);
     MovingClutter clutter(deg.clutter_blobs, camera.width, camera.height, &rng);

@@ -153,8 +153,8 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
       for (int seed = 1; seed <= options.seeds; ++seed) {
         TrackJobOptions job;
         job.model = options.models[method.model];
-        job.clip = dir.string();
-        job.max_frames = frames;
+        job.source.clip = dir.string();
+        job.source.max_frames = frames;
         job.overlays = false;
         job.tracker = options.tracker;
         job.tracker.space = method.space;
@@ -271,8 +271,8 @@ std::vector<BudgetPoint> RunBudgetCurve(const fs::path& clip, const std::string&
     for (int seed = 1; seed <= options.seeds; ++seed) {
       TrackJobOptions job;
       job.model = model;
-      job.clip = clip.string();
-      job.max_frames = options.max_frames;
+      job.source.clip = clip.string();
+      job.source.max_frames = options.max_frames;
       job.overlays = false;
       job.tracker = options.tracker;
       job.tracker.annealing.particles = particles;

@@ -1,8 +1,10 @@
 #include "tracker/track_job.h"
 
+#include <chrono>
 #include <cmath>
 
 #include <Eigen/Geometry>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "io/amc.h"
@@ -18,6 +20,7 @@
 #include "prior/model_file.h"
 #include "prior/png_file.h"
 #include "tracker/clip_source.h"
+#include "tracker/video_frame_source.h"
 
 namespace jgpm {
 namespace fs = std::filesystem;
@@ -94,7 +97,50 @@ std::unique_ptr<GaitModel> ModelOnSkeleton(const GaitModel& model, const std::st
   return GaitModel::Create(std::move(data), asf);
 }
 
-TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(const TrackedFrame&, int total)>& progress) {
+namespace {
+
+// Each camera's overlay video, written frame by frame.
+class OverlayWriter {
+ public:
+  OverlayWriter(const fs::path& dir, const TrackRun& run, const Tracker& tracker, const Skeleton& skeleton)
+      : run_(run), tracker_(tracker), skeleton_(skeleton), last_(run.cameras.size()) {
+    for (const Camera& camera : run.cameras) {
+      const fs::path path = dir / ("overlay_" + camera.name + ".avi");
+      videos_.emplace_back(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), run.fps,
+                           cv::Size(camera.width, camera.height));
+      if (!videos_.back().isOpened()) ThrowInputError(path.string(), "OpenCV cannot write an MJPG video here");
+    }
+  }
+  // The frame's images with the estimate over them (a dropped frame: the last image,
+  // dimmed); also returned.
+  const std::vector<cv::Mat>& Write(const Frame& frame, const TrackedFrame& f) {
+    capsules_.clear();
+    if (f.state.size()) {
+      tracker_.body().Place(f.joints_mm, &capsules_);
+      for (Capsule& c : capsules_) c.radius_from_mm *= f.size, c.radius_to_mm *= f.size;
+    }
+    shown_.resize(run_.cameras.size());
+    for (size_t c = 0; c < run_.cameras.size(); ++c) {
+      if (!frame.dropped && c < frame.images.size()) last_[c] = frame.images[c];
+      const cv::Mat image = frame.dropped && !last_[c].empty() ? cv::Mat(last_[c] * 0.5) : last_[c];
+      shown_[c] = OverlayFrame(image, run_.cameras[c], f, capsules_, skeleton_);
+      videos_[c].write(shown_[c]);
+    }
+    return shown_;
+  }
+
+ private:
+  const TrackRun& run_;
+  const Tracker& tracker_;
+  const Skeleton& skeleton_;
+  std::vector<cv::VideoWriter> videos_;
+  std::vector<cv::Mat> last_, shown_;
+  std::vector<Capsule> capsules_;
+};
+
+}  // namespace
+
+TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progress) {
   // Everything that can be refused is, before the long part.
   std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
   TrackerOptions tracker_options = o.tracker;
@@ -102,88 +148,122 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const std::function<void(co
     model = ModelOnSkeleton(*model, o.asf);
     tracker_options.known_size = true;
   }
-  ClipFrameSourceOptions source_options;
-  source_options.cameras = o.cameras;
-  source_options.exact_masks = o.exact_masks;
-  source_options.max_frames = o.max_frames;
-  ClipFrameSource source(o.clip, source_options);
+  const std::unique_ptr<FrameSource> source = MakeFrameSource(o.source);
+  const auto* clip = dynamic_cast<const ClipFrameSource*>(source.get());
+  const auto* video = dynamic_cast<const VideoFrameSource*>(source.get());
+  if (o.truth_start && !clip) ThrowInputError("--init truth", "needs a clip's ground truth (--clip)");
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
 
-  Tracker tracker(*model, source.cameras(), tracker_options);
+  Tracker tracker(*model, source->cameras(), tracker_options);
   TrackJobResult result;
   TrackRun& run = result.run;
   run.model_path = o.model;
-  run.source = o.clip;
+  for (const std::string* s : {&o.source.clip, &o.source.images, &o.source.device}) {
+    if (!s->empty()) run.source = *s;
+  }
+  for (const std::string& v : o.source.videos) run.source += (run.source.empty() ? "" : ", ") + v;
   run.init = o.truth_start ? "truth" : "auto";
   run.coordinate_names = tracker.state_model().CoordinateNames();
   run.state_space = tracker.state_model().Name();
-  run.cameras = source.cameras();
-  run.fps = source.fps();
+  run.cameras = source->cameras();
+  run.fps = source->fps();
   run.options = tracker_options;
+  result.live = video && video->live();
 
+  // Overlays are written as the frames go by when the frames bring their images; a clip
+  // tracked from its masks is decoded for them afterwards (kept out of the tracking time).
+  const bool images_now = video || o.source.clip_foreground;
+  const fs::path dir = folder ? folder->partial() : fs::path();
+  std::optional<OverlayWriter> overlays;
+  if (folder && o.overlays && images_now) overlays.emplace(dir, run, tracker, model->skeleton());
+  const auto started = std::chrono::steady_clock::now();
+  double latency_sum = 0;
+  int latency_count = 0;
+  const auto on_frame = [&](const Frame& frame, TrackedFrame& f) {
+    if (result.live && !frame.dropped) {
+      f.latency_ms = frame.latency_ms + 1000 * f.seconds;
+      latency_sum += f.latency_ms;
+      ++latency_count;
+      result.max_latency_ms = std::max(result.max_latency_ms, f.latency_ms);
+    }
+    if (progress) progress(f, source->NumFrames(), video ? video->skipped() : 0);
+    if (folder && o.save_masks && !frame.dropped) {
+      for (size_t c = 0; c < run.cameras.size(); ++c) {
+        const fs::path path = dir / "masks" / run.cameras[c].name / ClipFrameName(frame.index);
+        fs::create_directories(path.parent_path());
+        if (!cv::imwrite(path.string(), frame.masks[c])) ThrowInputError(path.string(), "cannot write the mask");
+      }
+    }
+    if (overlays) {
+      const std::vector<cv::Mat>& shown = overlays->Write(frame, f);
+      if (o.show) o.show(shown);
+    }
+  };
+  const auto stop = [&] {
+    if (o.stop && o.stop->load()) return result.stopped = "interrupted", true;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (o.max_seconds > 0 && elapsed >= o.max_seconds) return result.stopped = "time limit reached", true;
+    return false;
+  };
   if (o.truth_start) {
-    tracker.StartAt(TruthGuess(source.truth(), *model, tracker.state_model()));
+    tracker.StartAt(TruthGuess(clip->truth(), *model, tracker.state_model()));
     Frame frame;
-    while (source.Next(&frame)) {
+    while (!stop() && source->Next(&frame)) {
       run.frames.push_back(tracker.Step(frame));
-      if (progress) progress(run.frames.back(), source.NumFrames());
+      on_frame(frame, run.frames.back());
     }
   } else {
-    run.frames = TrackSource(&source, &tracker, progress);
+    run.frames = TrackSource(source.get(), &tracker, on_frame, stop);
   }
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
+  if (video) {
+    if (result.stopped.empty()) result.stopped = video->ended();
+    result.skipped = video->skipped();
+    result.unpaired = video->unpaired();
+  }
+  if (latency_count) result.mean_latency_ms = latency_sum / latency_count;
+  if (run.frames.empty()) ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));
 
-  std::vector<Eigen::Matrix3Xd> truth;
-  for (const TrackedFrame& f : run.frames) truth.push_back(source.truth().frames[f.index].joints_mm);
-  result.errors = EvaluateRun(run, model->skeleton(), truth, source.truth().joint_names);
+  if (clip) {
+    std::vector<Eigen::Matrix3Xd> truth;
+    for (const TrackedFrame& f : run.frames) truth.push_back(clip->truth().frames[f.index].joints_mm);
+    result.errors = EvaluateRun(run, model->skeleton(), truth, clip->truth().joint_names);
+  }
   if (!folder) return result;
 
   // The results, all or none.
-  const fs::path& dir = folder->partial();
   OutputBatch batch;
   batch.Add(dir / "poses.json", FormatJson(PosesJson(run, model->skeleton(), result.errors)));
   const TrackedMotion motion = MakeTrackedMotion(run, *model);
   batch.Add(dir / "tracked.amc", FormatAmc(motion.motion, motion.skeleton));
   batch.Add(dir / "tracked.asf", motion.asf);
   batch.Add(dir / "tracked.bvh", FormatBvh(AcclaimToBvh(motion.skeleton, motion.motion)));
-  batch.Add(dir / "track.png", EncodePng(ErrorPlot(*result.errors, run), "track.png"));
+  if (result.errors) batch.Add(dir / "track.png", EncodePng(ErrorPlot(*result.errors, run), "track.png"));
   batch.Commit();
-  if (o.overlays) {
-    // A second pass over the clip for its video frames (kept out of the tracking time).
-    source_options.with_images = true;
-    ClipFrameSource images(o.clip, source_options);
-    std::vector<cv::VideoWriter> videos;
-    for (const Camera& camera : run.cameras) {
-      const fs::path path = dir / ("overlay_" + camera.name + ".avi");
-      videos.emplace_back(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), run.fps,
-                          cv::Size(camera.width, camera.height));
-      if (!videos.back().isOpened()) ThrowInputError(path.string(), "OpenCV cannot write an MJPG video here");
-    }
+  if (o.overlays && !images_now) {
+    ClipFrameSourceOptions image_options;
+    image_options.cameras = clip->camera_indices();
+    image_options.exact_masks = o.source.exact_masks;
+    image_options.max_frames = run.frames.back().index + 1;
+    image_options.with_images = true;
+    ClipFrameSource images(o.source.clip, image_options);
+    OverlayWriter writer(dir, run, tracker, model->skeleton());
     Frame frame;
-    std::vector<cv::Mat> last(run.cameras.size());
-    Eigen::Matrix3Xd joints;
-    std::vector<Capsule> capsules;
     for (const TrackedFrame& f : run.frames) {
       if (!images.Next(&frame)) break;
-      capsules.clear();
-      if (f.state.size()) {
-        tracker.body().Place(f.joints_mm, &capsules);
-        for (Capsule& c : capsules) c.radius_from_mm *= f.size, c.radius_to_mm *= f.size;
-      }
-      for (size_t c = 0; c < run.cameras.size(); ++c) {
-        if (!frame.dropped) last[c] = frame.images[c];
-        cv::Mat shown = frame.dropped && !last[c].empty() ? cv::Mat(last[c] * 0.5) : last[c];
-        videos[c].write(OverlayFrame(shown, run.cameras[c], f, capsules, model->skeleton()));
-      }
+      writer.Write(frame, f);
     }
   }
+  overlays.reset();  // close the videos before the folder moves
   folder->Commit();
-  for (const char* name : {"poses.json", "tracked.amc", "tracked.asf", "tracked.bvh", "track.png"}) {
+  for (const char* name : {"poses.json", "tracked.amc", "tracked.asf", "tracked.bvh"}) {
     result.written.push_back(fs::path(o.out) / name);
   }
+  if (result.errors) result.written.push_back(fs::path(o.out) / "track.png");
   if (o.overlays)
     for (const Camera& c : run.cameras) result.written.push_back(fs::path(o.out) / ("overlay_" + c.name + ".avi"));
+  if (o.save_masks) result.written.push_back(fs::path(o.out) / "masks");
   return result;
 }
 

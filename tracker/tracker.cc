@@ -335,18 +335,23 @@ void Tracker::Exact(const Eigen::VectorXd& state, Eigen::VectorXd* pose_deg, Eig
 }
 
 std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
-                                      const std::function<void(const TrackedFrame&, int total)>& progress) {
+                                      const std::function<void(const Frame&, TrackedFrame&)>& on_frame,
+                                      const std::function<bool()>& stop) {
+  const auto stopped = [&stop] { return stop && stop(); };
   std::vector<Frame> first;
   Frame frame;
-  while (static_cast<int>(first.size()) < tracker->options().start_frames && source->Next(&frame)) first.push_back(frame);
-  tracker->StartFromFrames(first);
+  while (static_cast<int>(first.size()) < tracker->options().start_frames && !stopped() && source->Next(&frame)) {
+    first.push_back(frame);
+  }
   std::vector<TrackedFrame> tracked;
+  if (first.empty()) return tracked;
+  tracker->StartFromFrames(first);
   auto step = [&](const Frame& f) {
     tracked.push_back(tracker->Step(f));
-    if (progress) progress(tracked.back(), source->NumFrames());
+    if (on_frame) on_frame(f, tracked.back());
   };
   for (const Frame& f : first) step(f);
-  while (source->Next(&frame)) step(frame);
+  while (!stopped() && source->Next(&frame)) step(frame);
   return tracked;
 }
 

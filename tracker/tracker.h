@@ -90,6 +90,8 @@ struct TrackedFrame {
   double ess = 0;                   // effective sample size / particles
   int evaluations = 0;              // likelihood evaluations spent on the frame
   double seconds = 0;               // wall time of the frame's filtering
+  double latency_ms = 0;            // live: from capture to this estimate (not written:
+                                    // one seed gives one poses.json)
 
   double MeanIou() const;
 };
@@ -146,8 +148,11 @@ class Tracker {
 };
 
 // Tracks every frame of a source: the first options.start_frames frames are looked at to
-// start, then tracked like the rest. `progress` (may be empty) gets each frame as it ends.
+// start, then tracked like the rest. `on_frame` (may be empty) gets each frame with its
+// estimate as it ends (and may add to it, e.g. the latency); `stop` (may be empty) is asked before each frame is read and ends
+// the run early (Ctrl-C, a time limit).
 std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
-                                      const std::function<void(const TrackedFrame&, int total)>& progress = {});
+                                      const std::function<void(const Frame&, TrackedFrame&)>& on_frame = {},
+                                      const std::function<bool()>& stop = {});
 
 }  // namespace jgpm

@@ -5,6 +5,9 @@
 // `jgpm: error: ...`, a non-zero exit, and nothing written: neither OUT nor OUT.partial.
 // The clips are rendered by `jgpm render` from the test subject's walk (07_01), 20
 // frames, two cameras at 160x120; the prior is PCA (`jgpm train --model pca`, instant).
+// The same clip's videos stand in for real recordings (--video, --images): tracked
+// through background subtraction, they must give exactly what the clip tracked from its
+// videos gives (`--clip --foreground`, the path measured against the truth).
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -14,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "io/asf.h"
 #include "io/json_file.h"
@@ -232,6 +236,105 @@ TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
   std::string text;
   std::getline(mine, text);
   EXPECT_EQ(text, "mine");
+}
+
+// Every bone end of every frame of two runs, mm: the largest difference.
+double LargestDifference(const fs::path& a, const fs::path& b) {
+  const nlohmann::json x = ReadJsonFile(a / "poses.json", "poses"), y = ReadJsonFile(b / "poses.json", "poses");
+  EXPECT_EQ(x["frames"].size(), y["frames"].size());
+  double largest = 0;
+  for (size_t f = 0; f < std::min(x["frames"].size(), y["frames"].size()); ++f) {
+    const auto& p = x["frames"][f]["joints_mm"];
+    const auto& q = y["frames"][f]["joints_mm"];
+    for (size_t j = 0; j < p.size(); ++j)
+      for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(p[j][c].get<double>() - q[j][c].get<double>()));
+  }
+  return largest;
+}
+
+// `jgpm track` on the clip's own videos and cameras, not the clip.
+Result TrackVideos(const fs::path& out, const std::string& sources) {
+  return test::RunJgpm("track --model " + Shared().model.string() + " " + sources + " --out " + out.string() +
+                       " --particles 60 --layers 3 --threads 2 --no-overlay");
+}
+
+TEST(TrackCli, VideosAndImageFoldersAreTrackedThroughBackgroundSubtraction) {
+  const fs::path& clip = Shared().clip;
+  test::TempDir dir;
+  const std::string plates = " --background " + (clip / "background/cam0.png").string() + " --background " +
+                             (clip / "background/cam1.png").string();
+  const std::string cameras = " --camera " + (clip / "cam0.yaml").string() + " --camera " + (clip / "cam1.yaml").string();
+  // The clip from its videos (measured against its truth) and the videos as a user has them.
+  const Result from_clip = Track(clip, dir.path() / "clip", "--foreground mog2");
+  ASSERT_EQ(from_clip.status, 0) << from_clip.err;
+  EXPECT_NE(from_clip.out.find("error over 14 joints"), std::string::npos);
+  const Result videos = TrackVideos(dir.path() / "videos", "--video " + (clip / "cam0.avi").string() + " --video " +
+                                                               (clip / "cam1.avi").string() + cameras + plates +
+                                                               " --save-masks");
+  ASSERT_EQ(videos.status, 0) << videos.err;
+  EXPECT_EQ(LargestDifference(dir.path() / "clip", dir.path() / "videos"), 0.0);
+  const std::vector<std::string> statuses = Statuses(dir.path() / "videos");
+  EXPECT_EQ(static_cast<int>(statuses.size()), kFrames);
+  EXPECT_GE(std::count(statuses.begin(), statuses.end(), "tracked"), kFrames - 2);
+  EXPECT_TRUE(fs::exists(dir.path() / "videos/masks/cam1" / cv::format("%06d.png", kFrames - 1)));
+
+  // One camera's frames as a folder of PNGs at 30 frames/s: the same as its video.
+  const fs::path frames = dir.path() / "frames";
+  fs::create_directories(frames);
+  cv::VideoCapture video((clip / "cam0.avi").string());
+  cv::Mat image;
+  for (int k = 0; video.read(image); ++k) ASSERT_TRUE(cv::imwrite((frames / cv::format("%04d.png", k)).string(), image));
+  const std::string one_camera = " --camera " + (clip / "cam0.yaml").string() + " --background " +
+                                 (clip / "background/cam0.png").string();
+  const Result folder = TrackVideos(dir.path() / "folder", "--images " + frames.string() + " --fps 30" + one_camera);
+  ASSERT_EQ(folder.status, 0) << folder.err;
+  const Result one = TrackVideos(dir.path() / "one", "--video " + (clip / "cam0.avi").string() + one_camera);
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_LT(LargestDifference(dir.path() / "folder", dir.path() / "one"), 1e-6);
+
+  // No calibration: a guessed camera still runs (and says nothing of errors: no truth).
+  const Result guessed =
+      TrackVideos(dir.path() / "guessed", "--video " + (clip / "cam0.avi").string() + " --camera-guess");
+  ASSERT_EQ(guessed.status, 0) << guessed.err;
+  EXPECT_TRUE(fs::exists(dir.path() / "guessed/poses.json"));
+}
+
+TEST(TrackCli, BadVideosAndFoldersGiveOneLineAndWriteNothing) {
+  const fs::path& clip = Shared().clip;
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  const std::string camera = " --camera " + (clip / "cam0.yaml").string();
+  const std::string video = " --video " + (clip / "cam0.avi").string();
+  ExpectRefused(TrackVideos(out, video), out, "jgpm calibrate", "video, no camera");
+  ExpectRefused(TrackVideos(out, video + " --clip " + clip.string()), out, "exactly one source", "two sources");
+  ExpectRefused(TrackVideos(out, video + camera + " --init truth"), out, "--init truth", "truth without a clip");
+  // A video cut in half, and one with no frame.
+  const fs::path cut = dir.path() / "cut.avi";
+  fs::copy_file(clip / "cam0.avi", cut);
+  fs::resize_file(cut, fs::file_size(cut) / 2);
+  ExpectRefused(TrackVideos(out, "--video " + cut.string() + camera), out, "cut.avi", "truncated video");
+  const fs::path none = dir.path() / "none.avi";
+  { cv::VideoWriter(none.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, cv::Size(160, 120)); }
+  ExpectRefused(TrackVideos(out, "--video " + none.string() + camera), out, "none.avi", "zero-frame video");
+  // A video of another size than its camera's calibration.
+  const fs::path small = dir.path() / "small.avi";
+  {
+    cv::VideoWriter writer(small.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, cv::Size(80, 60));
+    for (int k = 0; k < 5; ++k) writer.write(cv::Mat(60, 80, CV_8UC3, cv::Scalar::all(100)));
+  }
+  ExpectRefused(TrackVideos(out, "--video " + small.string() + camera), out, "small.avi", "video of another size");
+  // Image folders: mixed sizes, a file that is not an image, no --fps.
+  const fs::path frames = dir.path() / "frames";
+  fs::create_directories(frames);
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(cv::imwrite((frames / cv::format("%04d.png", k)).string(), cv::Mat(120, 160, CV_8UC3, cv::Scalar::all(90))));
+  }
+  ExpectRefused(TrackVideos(out, "--images " + frames.string() + camera), out, "--fps", "images without --fps");
+  ASSERT_TRUE(cv::imwrite((frames / "0001.png").string(), cv::Mat(100, 160, CV_8UC3, cv::Scalar::all(90))));
+  ExpectRefused(TrackVideos(out, "--images " + frames.string() + " --fps 30" + camera), out, "0001.png", "mixed sizes");
+  dir.Write("frames/0001.png", "not an image\n");
+  ExpectRefused(TrackVideos(out, "--images " + frames.string() + " --fps 30" + camera), out, "0001.png",
+                "text among images");
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ const Fixture& Shared() {
 TrackJobOptions Job(const fs::path& clip, int threads, const fs::path& out = {}) {
   TrackJobOptions job;
   job.model = Shared().model.string();
-  job.clip = clip.string();
+  job.source.clip = clip.string();
   job.out = out.string();
   job.overlays = false;
   job.tracker.threads = threads;
@@ -179,7 +179,7 @@ TEST(Tracker, CountsEveryEvaluation) {
   const Fixture& f = Shared();
   TrackJobOptions job = Job(f.clip, 2);
   job.tracker.refinement.enabled = false;
-  job.max_frames = 6;
+  job.source.max_frames = 6;
   const TrackJobResult result = RunTrackJob(job);
   const AnnealingOptions& a = job.tracker.annealing;
   ASSERT_EQ(result.run.frames.size(), 6u);

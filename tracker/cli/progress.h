@@ -18,6 +18,7 @@ class ProgressLine {
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
 
+  // total < 0: open-ended (a live source), shown without a total or time left.
   void Update(double done, double total, const std::string& unit, const std::string& detail = "");
   // Ends the line on a terminal (before other output follows).
   void Finish();

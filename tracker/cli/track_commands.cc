@@ -1,9 +1,14 @@
 #include "tracker/cli/track_commands.h"
 
 #include <algorithm>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <thread>
+
+#include <opencv2/highgui.hpp>
 
 #include "io/data_root.h"
 #include "io/error.h"
@@ -22,10 +27,44 @@ struct TrackArguments {
   std::string cameras;
   std::string init = "auto";
   std::string space = "model";
+  std::string foreground;  // "" : a clip's masks, or mog2 for other sources
+  std::string size;        // a live camera's WxH
   bool no_latent_prior = false;
   bool no_overlay = false;
+  bool show = false;
   int threads = 0;
 };
+
+// The first Ctrl-C (or SIGTERM) ends tracking and what was tracked is written; the
+// handler then steps aside so that a second one kills the process.
+std::atomic<bool> interrupted{false};
+extern "C" void OnTrackInterrupt(int signal) {
+  interrupted = true;
+  std::signal(signal, SIG_DFL);
+}
+
+// "640x480" -> 640, 480.
+void ParseSize(const std::string& text, int* width, int* height) {
+  char x = 0, rest = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", width, &x, height, &rest) != 3 || (x != 'x' && x != 'X') || *width < 16 ||
+      *height < 16 || *width > 8192 || *height > 8192) {
+    ThrowInputError("--size " + text, "expected WIDTHxHEIGHT, e.g. 640x480");
+  }
+}
+
+// --show: a window per camera when there is a display, else a note.
+std::function<void(const std::vector<cv::Mat>&)> LiveWindows() {
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!x || !*x) && (!wayland || !*wayland)) {
+    std::fprintf(stderr, "jgpm: --show: no display (DISPLAY is not set); the overlays are written to --out instead\n");
+    return {};
+  }
+  return [](const std::vector<cv::Mat>& overlays) {
+    for (size_t c = 0; c < overlays.size(); ++c) cv::imshow("jgpm track: camera " + std::to_string(c), overlays[c]);
+    cv::waitKey(1);
+  };
+}
 
 // "0,2" -> {0, 2}.
 std::vector<int> ParseCameraList(const std::string& text) {
@@ -47,19 +86,33 @@ std::vector<int> ParseCameraList(const std::string& text) {
 }
 
 void RunTrack(TrackArguments a) {
-  a.job.cameras = ParseCameraList(a.cameras);
+  FrameSourceSpec& spec = a.job.source;
+  if (!a.cameras.empty()) spec.clip_cameras = ParseCameraList(a.cameras);
+  if (!a.size.empty()) ParseSize(a.size, &spec.device_width, &spec.device_height);
+  spec.clip_foreground = !spec.clip.empty() && !a.foreground.empty();
+  spec.foreground.method = a.foreground == "knn" ? ForegroundMethod::kKnn : ForegroundMethod::kMog2;
+  if (!spec.images.empty() && spec.images_fps <= 0) ThrowInputError("--images", "give the folder's frame rate with --fps");
   a.job.truth_start = a.init == "truth";
   a.job.overlays = !a.no_overlay;
   a.job.tracker.space = a.space == "joint-space" ? StateSpace::kJointSpace : StateSpace::kModel;
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
+  if (a.show) a.job.show = LiveWindows();
   ProgressLine line("track");
-  const TrackJobResult result = RunTrackJob(a.job, [&line](const TrackedFrame& f, int total) {
-    char detail[96];
-    std::snprintf(detail, sizeof(detail), "%-9s ess %.2f  overlap %.2f", std::string(TrackStatusName(f.status)).c_str(),
-                  f.ess, f.MeanIou());
-    line.Update(f.index + 1, total, "frames", detail);
+  int count = 0;
+  interrupted = false;
+  a.job.stop = &interrupted;
+  std::signal(SIGINT, OnTrackInterrupt);
+  std::signal(SIGTERM, OnTrackInterrupt);
+  const TrackJobResult result = RunTrackJob(a.job, [&line, &count](const TrackedFrame& f, int total, int skipped) {
+    char detail[160];
+    int n = std::snprintf(detail, sizeof(detail), "%-9s ess %.2f  overlap %.2f",
+                          std::string(TrackStatusName(f.status)).c_str(), f.ess, f.MeanIou());
+    if (total < 0) std::snprintf(detail + n, sizeof(detail) - n, "  latency %.0f ms  dropped %d", f.latency_ms, skipped);
+    line.Update(total < 0 ? ++count : f.index + 1, total, "frames", detail);
   });
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   line.Finish();
   const TrackRun& run = result.run;
   int tracked = 0, predicted = 0, lost = 0;
@@ -82,6 +135,15 @@ void RunTrack(TrackArguments a) {
                   name, e.absolute_mm, e.root_relative_mm, e.procrustes_mm, 100 * e.failure_rate, 100 * e.swap_rate);
     }
   }
+  if (result.live) {
+    std::printf("live: latency from capture to estimate %.1f ms mean, %.1f ms worst; %d frames dropped by the camera "
+                "(processing slower than capture)\n",
+                result.mean_latency_ms, result.max_latency_ms, result.skipped);
+  } else if (result.skipped > 0) {
+    std::printf("%d frame(s) of the video did not decode and were skipped\n", result.skipped);
+  }
+  if (result.unpaired > 0) std::printf("%d frame(s) not seen by every camera were predicted\n", result.unpaired);
+  if (!result.stopped.empty()) std::printf("stopped early: %s; what was tracked is written\n", result.stopped.c_str());
   for (const auto& file : result.written) std::printf("wrote %s\n", file.string().c_str());
 }
 
@@ -162,7 +224,56 @@ void AddTrackCommands(CLI::App& app) {
   auto a = std::make_shared<TrackArguments>();
   CLI::App* track = app.add_subcommand("track", "Track a walking person's 3-D pose in a clip with a gait prior");
   track->add_option("--model", a->job.model, "trained gait model (jgpm train)")->required();
-  track->add_option("--clip", a->job.clip, "synthetic clip folder (jgpm render)")->required();
+  // Where the frames come from: exactly one of these.
+  track->add_option("--clip", a->job.source.clip, "synthetic clip folder (jgpm render)");
+  track->add_option("--video", a->job.source.videos, "video file, one per camera (repeat), each with a --camera")
+      ->check(CLI::ExistingFile);
+  track->add_option("--images", a->job.source.images, "folder of frames (PNG/JPEG, name order), with --fps");
+  track->add_option("--fps", a->job.source.images_fps, "the image folder's frame rate");
+  track->add_option("--device", a->job.source.device,
+                    "live V4L2 camera, /dev/videoN (see jgpm devices); fake:VIDEO plays a video through the same "
+                    "code in real time");
+  track->add_option("--camera", a->job.source.camera_yamls, "calibrated camera YAML per video/images/device source "
+                                                            "(jgpm calibrate; repeat, same order)")
+      ->check(CLI::ExistingFile);
+  track->add_flag("--camera-guess", a->job.source.camera_guess,
+                  "no calibration: a camera from the image size, --guess-fov, placed --guess-height above the floor "
+                  "and tilted --guess-tilt down (rough 3-D)");
+  track->add_option("--guess-fov", a->job.source.guess.fov_deg, "horizontal field of view, degrees")
+      ->check(CLI::Range(10.0, 170.0))
+      ->capture_default_str();
+  track->add_option("--guess-height", a->job.source.guess.height_mm, "camera height above the floor, mm")
+      ->check(CLI::Range(100.0, 10000.0))
+      ->capture_default_str();
+  track->add_option("--guess-tilt", a->job.source.guess.tilt_deg, "downward tilt, degrees")
+      ->check(CLI::Range(-45.0, 80.0))
+      ->capture_default_str();
+  // Foreground.
+  track->add_option("--foreground", a->foreground,
+                    "background subtraction: mog2 or knn (default mog2 for videos, images and cameras; for a clip, "
+                    "computes its masks from its videos instead of reading them)")
+      ->check(CLI::IsMember({"mog2", "knn"}));
+  track->add_option("--background", a->job.source.backgrounds,
+                    "empty-scene image per camera (repeat; default: learnt from the frames)")
+      ->check(CLI::ExistingFile);
+  track->add_option("--learning-frames", a->job.source.foreground.learning_frames,
+                    "frames the background is learnt from: spread over a file, the first ones of a live camera "
+                    "(keep out of view meanwhile)")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  track->add_flag("--save-masks", a->job.save_masks, "also write the masks tracked, OUT/masks/CAMERA/NNNNNN.png");
+  // Live camera.
+  track->add_option("--size", a->size, "camera image size asked for, WxH (the nearest the device offers is used)")
+      ->capture_default_str();
+  track->add_option("--device-fps", a->job.source.device_fps, "camera frame rate asked for")
+      ->check(CLI::Range(1.0, 240.0))
+      ->capture_default_str();
+  track->add_option("--pixel-format", a->job.source.device_format, "auto (YUYV if offered, else MJPG), yuyv or mjpg")
+      ->check(CLI::IsMember({"auto", "yuyv", "mjpg"}))
+      ->capture_default_str();
+  track->add_option("--max-seconds", a->job.max_seconds, "stop after this long and write what was tracked (0: no limit)")
+      ->check(CLI::NonNegativeNumber);
+  track->add_flag("--show", a->show, "show the overlays live in a window (when there is a display)");
   track->add_option("--asf", a->job.asf, "the subject's skeleton, when known: poses are placed on it (size not estimated)")
       ->check(CLI::ExistingFile);
   track->add_option("--out", a->job.out, "new (or empty) folder for poses.json, tracked.bvh/.amc, overlays, track.png")
@@ -183,10 +294,10 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
-  track->add_option("--max-frames", a->job.max_frames, "track at most this many frames (0: all)")
+  track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  track->add_flag("--exact-masks", a->job.exact_masks, "the clip's exact masks instead of its observed (degraded) ones");
+  track->add_flag("--exact-masks", a->job.source.exact_masks, "the clip's exact masks instead of its observed (degraded) ones");
   track->add_flag("--no-overlay", a->no_overlay, "skip the overlay videos");
   track->callback([a] { RunTrack(*a); });
 

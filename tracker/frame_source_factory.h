@@ -1,0 +1,58 @@
+// The frame source a `jgpm track` command line asks for, made in one place: a synthetic
+// clip (its masks, or its videos through background subtraction), video files, an image
+// folder, or a live V4L2 camera, each camera with its calibration.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "calibration/camera.h"
+#include "tracker/foreground.h"
+#include "tracker/frame_source.h"
+
+namespace jgpm {
+
+// A camera for a video nobody calibrated (`--camera-guess`): the image size, a horizontal
+// field of view, placed at a height above the floor at the world origin, looking along +z
+// tilted down. Good enough to see a walk; the 3-D figures are only as right as the guess.
+struct CameraGuess {
+  double fov_deg = 60;      // a typical webcam's horizontal field of view
+  double height_mm = 1200;  // a camera on a tripod or desk
+  double tilt_deg = 10;     // looking slightly down, so that the feet are in view
+};
+Camera GuessCamera(const std::string& name, int width, int height, const CameraGuess& guess);
+
+struct FrameSourceSpec {
+  // Exactly one kind of source.
+  std::string clip;                 // a synthetic clip folder
+  std::vector<std::string> videos;  // video files, one per camera
+  std::string images;               // an image folder...
+  double images_fps = 0;            // ...and its frame rate
+  std::string device;               // /dev/videoN, or fake:VIDEO (plays a video through
+                                    // the V4L2 code in real time: a camera for tests)
+  // Cameras: of a clip, the indices to use (empty: all); otherwise one YAML per source,
+  // or a guess.
+  std::vector<int> clip_cameras;
+  std::vector<std::string> camera_yamls;
+  bool camera_guess = false;
+  CameraGuess guess;
+  // Masks: a clip's exact masks instead of its observed ones; or, when `foreground` is
+  // set for a clip, computed from its videos as for any video.
+  bool exact_masks = false;
+  bool clip_foreground = false;
+  ForegroundOptions foreground;
+  std::vector<std::string> backgrounds;
+  // Live camera.
+  int device_width = 640, device_height = 480;
+  double device_fps = 30;
+  std::string device_format = "auto";  // auto, yuyv, mjpg
+  int max_frames = 0;
+};
+
+// InputError naming the option, file or device for anything unusable: no source or two,
+// a video without a camera YAML (the message says how to make one), cameras that do not
+// match their sources.
+std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec);
+
+}  // namespace jgpm
