@@ -83,6 +83,7 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
   const int n = static_cast<int>(r.run.frames.size());
   row->lost_rate += n ? static_cast<double>(lost) / n : 0;
   row->fps += r.run.tracking_seconds > 0 ? n / r.run.tracking_seconds : 0;
+  row->fps_with_input += r.loop_seconds > 0 ? n / r.loop_seconds : 0;
   row->evaluations_per_frame += n ? static_cast<double>(evaluations) / n : 0;
   row->frames = n;
   ++row->seeds;
@@ -92,7 +93,7 @@ void Average(TrackBenchRow* row) {
   const double k = std::max(1, row->seeds);
   for (double* x : {&row->bt14_mm, &row->bt14_root_mm, &row->bt14_procrustes_mm, &row->g17_mm, &row->g17_root_mm,
                     &row->g17_procrustes_mm, &row->search_bt14_mm, &row->search_g17_root_mm, &row->failure_rate,
-                    &row->swap_rate, &row->lost_rate, &row->fps, &row->evaluations_per_frame}) {
+                    &row->swap_rate, &row->lost_rate, &row->fps, &row->fps_with_input, &row->evaluations_per_frame}) {
     *x /= k;
   }
   for (double& x : row->per_joint_mm) x /= k;
@@ -125,12 +126,14 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
     StateSpace space;
     bool latent_prior;
     bool known_skeleton = false;
+    bool from_video = false;
   };
   std::vector<Method> methods;
   for (size_t m = 0; m < models.size(); ++m) methods.push_back({static_cast<int>(m), "prior", StateSpace::kModel, true});
   if (options.known_skeleton) methods.push_back({0, "known-skeleton", StateSpace::kModel, true, true});
   if (options.no_latent_prior) methods.push_back({0, "no-latent-prior", StateSpace::kModel, false});
   if (options.joint_space) methods.push_back({0, "joint-space", StateSpace::kJointSpace, true});
+  if (options.from_video) methods.push_back({0, "from-video", StateSpace::kModel, true, false, true});
   std::vector<TrackBenchRow> rows;
   const int total = static_cast<int>(clips.size() * methods.size());
   for (const SuiteClip& clip : clips) {
@@ -155,6 +158,7 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
         job.model = options.models[method.model];
         job.source.clip = dir.string();
         job.source.max_frames = frames;
+        job.source.clip_foreground = method.from_video;
         job.overlays = false;
         job.tracker = options.tracker;
         job.tracker.space = method.space;
@@ -180,15 +184,15 @@ std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows) {
   std::string csv =
       "clip,model,method,cameras,frames,seeds,bt14_mm,bt14_root_mm,bt14_procrustes_mm,g17_mm,g17_root_mm,"
       "g17_procrustes_mm,search_bt14_mm,search_g17_root_mm,floor_bt14_root_mm,floor_g17_root_mm,failure_rate,"
-      "swap_rate,lost_rate,fps,evaluations_per_frame\n";
+      "swap_rate,lost_rate,fps,fps_with_input,evaluations_per_frame\n";
   char line[640];
   for (const TrackBenchRow& r : rows) {
     std::snprintf(line, sizeof(line),
-                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.1f\n",
+                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f\n",
                   r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.cameras, r.frames, r.seeds, r.bt14_mm,
                   r.bt14_root_mm, r.bt14_procrustes_mm, r.g17_mm, r.g17_root_mm, r.g17_procrustes_mm,
                   r.search_bt14_mm, r.search_g17_root_mm, r.floor_bt14_root_mm, r.floor_g17_root_mm, r.failure_rate,
-                  r.swap_rate, r.lost_rate, r.fps, r.evaluations_per_frame);
+                  r.swap_rate, r.lost_rate, r.fps, r.fps_with_input, r.evaluations_per_frame);
     csv += line;
   }
   return csv;

@@ -27,19 +27,23 @@ struct TrackBenchOptions {
   bool known_skeleton = true;       // the first model on the subject's own skeleton (the
                                     // clip's source ASF, as jgpm track --asf): what the
                                     // floor assumes, so search / floor compares like with like
+  bool from_video = true;           // the first model on masks computed from the clip's
+                                    // videos by background subtraction, as for a recording
   int seeds = 2;
   int max_frames = 0;               // per clip; 0: all
   TrackerOptions tracker;
 };
 
 struct TrackBenchRow {
-  std::string clip, model, method;  // method: "prior", "no-latent-prior", "joint-space"
+  std::string clip, model, method;  // method: "prior", "known-skeleton", "no-latent-prior",
+                                    // "joint-space", "from-video"
   int cameras = 0, frames = 0, seeds = 0;
   double bt14_mm = 0, bt14_root_mm = 0, bt14_procrustes_mm = 0;   // refined (the output)
   double g17_mm = 0, g17_root_mm = 0, g17_procrustes_mm = 0;
   double search_bt14_mm = 0, search_g17_root_mm = 0;              // before refinement
   double failure_rate = 0, swap_rate = 0, lost_rate = 0;
   double fps = 0, evaluations_per_frame = 0;
+  double fps_with_input = 0;  // with reading the frames (and background subtraction)
   double floor_bt14_root_mm = -1, floor_g17_root_mm = -1;         // -1: not applicable
   // The 17 gait joints' absolute error (refined), averaged over the seeds: per joint, and
   // per frame (NaN where a seed had no estimate).

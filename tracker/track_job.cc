@@ -217,6 +217,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     run.frames = TrackSource(source.get(), &tracker, on_frame, stop);
   }
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
+  result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (video) {
     if (result.stopped.empty()) result.stopped = video->ended();
     result.skipped = video->skipped();

@@ -46,6 +46,9 @@ struct TrackJobResult {
   int skipped = 0;      // frames the source lost (undecodable; a live camera's drops)
   int unpaired = 0;     // frames not seen by every camera, predicted
   bool live = false;
+  double loop_seconds = 0;  // the tracking loop's wall time: reading and preparing the
+                            // frames (decoding, background subtraction) and tracking,
+                            // without writing outputs (run.tracking_seconds: filtering)
   double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate
 };
 
