@@ -33,6 +33,7 @@
 #include <random>
 
 #include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/amc.h"
@@ -48,6 +49,7 @@
 #include "tracker/bit_silhouette.h"
 #include "tracker/clip_format.h"
 #include "tracker/clip_source.h"
+#include "tracker/foreground.h"
 #include "tracker/likelihood.h"
 #include "tracker/manifold_state.h"
 #include "tracker/pose_table.h"
@@ -171,7 +173,8 @@ const PoseTable& Table() {
 struct Clip {
   Skeleton skeleton;                        // 07's
   ClipGroundTruth truth;
-  std::vector<Frame> frames;                // observed masks, from ClipFrameSource
+  std::vector<Frame> frames;                // observed masks and video images, from ClipFrameSource
+  std::vector<cv::Mat> backgrounds;         // per camera: the empty room
   std::vector<std::vector<Capsule>> truth_bodies;  // per frame
   std::vector<std::vector<cv::Rect>> regions;      // per frame and camera: around the walker
   std::vector<std::unique_ptr<SilhouetteLikelihood>> single;  // one camera each
@@ -218,8 +221,12 @@ const Clip& TheClip() {
       const test::TempDir dir;  // the clip lives only while it is read
       const std::filesystem::path folder = dir.path() / "clip";
       RenderClip(k.skeleton, motion, {asf.string(), amc.string()}, {}, options, folder.string());
-      ClipFrameSource source(folder, {});
+      ClipFrameSourceOptions source_options;
+      source_options.with_images = true;
+      ClipFrameSource source(folder, source_options);
       k.truth = source.truth();
+      for (const Camera& camera : k.truth.cameras)
+        k.backgrounds.push_back(cv::imread(ClipPaths{folder}.Background(camera.name).string(), cv::IMREAD_COLOR));
       Frame frame;
       while (source.Next(&frame)) k.frames.push_back(frame);
     }
@@ -451,6 +458,32 @@ void BM_LikelihoodObserve(benchmark::State& state) {
   state.counters["per_camera_frame"] = TimePer(static_cast<double>(state.iterations()));
 }
 BENCHMARK(BM_LikelihoodObserve)->Unit(benchmark::kMicrosecond);
+
+// A colour frame to a mask by background subtraction (tracker/foreground.h), as for a
+// recording: gain compensation, MOG2 (0) or KNN (1), clean-up, specks. OpenCV on one
+// thread, as above.
+void BM_Foreground(benchmark::State& state) {
+  const Clip& clip = TheClip();
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  ForegroundOptions options;
+  options.method = state.range(0) ? ForegroundMethod::kKnn : ForegroundMethod::kMog2;
+  std::vector<ForegroundExtractor> extractors;
+  for (int c = 0; c < kCameras; ++c) {
+    extractors.emplace_back(options, clip.truth.cameras[c].width, clip.truth.cameras[c].height);
+    extractors.back().SetBackground(clip.backgrounds[c]);
+  }
+  size_t i = 0;
+  for (auto _ : state) {
+    const int c = static_cast<int>(i % kCameras);
+    const size_t f = (i / kCameras) % clip.frames.size();
+    benchmark::DoNotOptimize(extractors[c].Apply(clip.frames[f].images[c]).data);
+    ++i;
+  }
+  cv::setNumThreads(threads);
+  state.counters["per_camera_frame"] = TimePer(static_cast<double>(state.iterations()));
+}
+BENCHMARK(BM_Foreground)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // ---------------------------------------------------------------------------------------
 // Resampling: one annealing layer's bookkeeping for N particles: beta by bisection on the
