@@ -15,6 +15,8 @@ find_package(PkgConfig REQUIRED)
 # LLT + triangular solves take 520 ms (measured side by side, prior/cholesky.h).
 pkg_check_modules(LAPACKE REQUIRED IMPORTED_TARGET lapacke)
 pkg_check_modules(OPENBLAS REQUIRED IMPORTED_TARGET openblas)
+# Live cameras (io/v4l2_api.h): the V4L2 calls through libv4l2.
+pkg_check_modules(LIBV4L2 REQUIRED IMPORTED_TARGET libv4l2)
 
 
 if(JGPM_BUILD_TESTS OR JGPM_BENCHMARKS)  # the benchmarks share the tests' support code

@@ -1,9 +1,12 @@
 #include "tracker/frame_source_factory.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/error.h"
+#include "io/fake_v4l2_device.h"
 #include "io/image_folder.h"
+#include "io/v4l2_camera.h"
 #include "io/video_file.h"
 #include "tracker/clip_source.h"
 #include "tracker/video_frame_source.h"
@@ -27,6 +30,35 @@ Camera SourceCamera(const FrameSourceSpec& spec, const ImageSource& source, size
   return file.camera;
 }
 
+// A live camera: a V4L2 device, or the software one playing a video.
+std::unique_ptr<ImageSource> OpenCamera(const FrameSourceSpec& spec, const std::string& device) {
+  V4l2Options options;
+  options.width = spec.device_width;
+  options.height = spec.device_height;
+  options.fps = spec.device_fps;
+  options.format = spec.device_format;
+  std::shared_ptr<V4l2Api> api;
+  if (device.rfind("fake:", 0) == 0) {
+    auto video = std::make_shared<VideoFileSource>(device.substr(5));
+    auto fake = std::make_shared<FakeV4l2Device>(device);
+    fake->forced_width = video->width();
+    fake->forced_height = video->height();
+    fake->device_fps = video->fps();
+    fake->Play([video](cv::Mat* frame) {
+      Image image;
+      if (!video->Read(&image)) return false;
+      *frame = image.bgr;
+      return true;
+    }, video->fps());
+    api = fake;
+  } else {
+    api = std::make_shared<LibV4l2Api>();
+  }
+  auto camera = std::make_unique<V4l2Camera>(device, options, api);
+  if (spec.note) spec.note(camera->negotiation());
+  return camera;
+}
+
 }  // namespace
 
 Camera GuessCamera(const std::string& name, int width, int height, const CameraGuess& guess) {
@@ -38,7 +70,7 @@ Camera GuessCamera(const std::string& name, int width, int height, const CameraG
 }
 
 std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
-  const int kinds = !spec.clip.empty() + !spec.videos.empty() + !spec.images.empty() + !spec.device.empty();
+  const int kinds = !spec.clip.empty() + !spec.videos.empty() + !spec.images.empty() + !spec.devices.empty();
   if (kinds != 1) ThrowInputError("--clip/--video/--images/--device", "give exactly one source of frames");
   if (!spec.clip.empty()) {
     if (!spec.camera_yamls.empty() || spec.camera_guess) {
@@ -55,7 +87,7 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   if (!spec.clip_cameras.empty()) ThrowInputError("--cameras", "chooses among a clip's cameras; give --camera YAMLs");
   if (spec.exact_masks) ThrowInputError("--exact-masks", "only a clip has exact masks");
   if (spec.images.empty() && spec.images_fps > 0) ThrowInputError("--fps", "is the frame rate of an --images folder");
-  const size_t wanted = spec.videos.empty() ? 1 : spec.videos.size();
+  const size_t wanted = std::max<size_t>({1, spec.videos.size(), spec.devices.size()});
   if (spec.camera_guess && !spec.camera_yamls.empty()) {
     ThrowInputError("--camera-guess", "give --camera YAMLs or the guess, not both");
   }
@@ -69,9 +101,18 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   std::vector<std::unique_ptr<ImageSource>> sources;
   for (const std::string& video : spec.videos) sources.push_back(std::make_unique<VideoFileSource>(video));
   if (!spec.images.empty()) sources.push_back(std::make_unique<ImageFolderSource>(spec.images, spec.images_fps));
-  if (!spec.device.empty()) ThrowInputError(spec.device, "live cameras are not built into this jgpm");
+  for (const std::string& device : spec.devices) sources.push_back(OpenCamera(spec, device));
   std::vector<Camera> cameras;
   for (size_t k = 0; k < sources.size(); ++k) cameras.push_back(SourceCamera(spec, *sources[k], k, sources.size()));
+  for (size_t a = 0; a < cameras.size(); ++a)
+    for (size_t b = 0; b < a; ++b)
+      if (cameras[a].name == cameras[b].name) {
+        ThrowInputError("--camera", "two cameras are named " + cameras[a].name + " (set camera_name in the YAMLs)");
+      }
+  if (spec.note && !sources.empty() && sources[0]->live() && spec.backgrounds.empty()) {
+    spec.note("learning the background from the first " + std::to_string(spec.foreground.learning_frames) +
+              " frames: keep out of view until tracking starts");
+  }
   VideoFrameSourceOptions options;
   options.foreground = spec.foreground;
   options.backgrounds = spec.backgrounds;

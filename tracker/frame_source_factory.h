@@ -3,6 +3,7 @@
 // folder, or a live V4L2 camera, each camera with its calibration.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,8 +30,9 @@ struct FrameSourceSpec {
   std::vector<std::string> videos;  // video files, one per camera
   std::string images;               // an image folder...
   double images_fps = 0;            // ...and its frame rate
-  std::string device;               // /dev/videoN, or fake:VIDEO (plays a video through
-                                    // the V4L2 code in real time: a camera for tests)
+  std::vector<std::string> devices;  // live cameras, /dev/videoN, or fake:VIDEO (a video
+                                     // played in real time through the V4L2 code and a
+                                     // software camera, io/fake_v4l2_device.h: for tests)
   // Cameras: of a clip, the indices to use (empty: all); otherwise one YAML per source,
   // or a guess.
   std::vector<int> clip_cameras;
@@ -48,6 +50,8 @@ struct FrameSourceSpec {
   double device_fps = 30;
   std::string device_format = "auto";  // auto, yuyv, mjpg
   int max_frames = 0;
+  // Told what a live camera gave and what the start needs (the command prints it).
+  std::function<void(const std::string&)> note;
 };
 
 // InputError naming the option, file or device for anything unusable: no source or two,

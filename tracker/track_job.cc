@@ -159,10 +159,11 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   TrackJobResult result;
   TrackRun& run = result.run;
   run.model_path = o.model;
-  for (const std::string* s : {&o.source.clip, &o.source.images, &o.source.device}) {
+  for (const std::string* s : {&o.source.clip, &o.source.images}) {
     if (!s->empty()) run.source = *s;
   }
-  for (const std::string& v : o.source.videos) run.source += (run.source.empty() ? "" : ", ") + v;
+  for (const auto* list : {&o.source.videos, &o.source.devices})
+    for (const std::string& v : *list) run.source += (run.source.empty() ? "" : ", ") + v;
   run.init = o.truth_start ? "truth" : "auto";
   run.coordinate_names = tracker.state_model().CoordinateNames();
   run.state_space = tracker.state_model().Name();

@@ -28,6 +28,10 @@ VideoFrameSource::VideoFrameSource(std::vector<std::unique_ptr<ImageSource>> sou
     }
     foreground_.emplace_back(options.foreground, camera.width, camera.height);
   }
+  // Each camera's background: given, or learnt. Files and folders are sampled over their
+  // whole length; live cameras give their next frames, all cameras in turn, so that they
+  // learn over the same seconds.
+  learning_.resize(sources_.size());
   for (size_t c = 0; c < sources_.size(); ++c) {
     ImageSource& s = *sources_[c];
     if (!options.backgrounds.empty()) {
@@ -39,17 +43,12 @@ VideoFrameSource::VideoFrameSource(std::vector<std::unique_ptr<ImageSource>> sou
                                   ", not the size of " + s.name());
       }
       foreground_[c].SetBackground(background);
-      continue;
+    } else if (!s.live()) {
+      learning_[c] = s.Sample(options.foreground.learning_frames);
+      if (learning_[c].empty()) ThrowInputError(s.name(), "gave no image to learn the background from");
     }
-    std::vector<cv::Mat> learning = s.Sample(options.foreground.learning_frames);
-    Image image;
-    while (learning.empty() || (s.live() && static_cast<int>(learning.size()) < options.foreground.learning_frames)) {
-      if (!s.Read(&image)) break;
-      learning.push_back(image.bgr.clone());
-    }
-    if (learning.empty()) ThrowInputError(s.name(), "gave no image to learn the background from");
-    foreground_[c].Learn(learning);
   }
+  learnt_ = !options.backgrounds.empty();
   queued_.resize(sources_.size());
   finished_.assign(sources_.size(), false);
 }
@@ -72,12 +71,72 @@ std::string VideoFrameSource::ended() const {
   return "";
 }
 
+void VideoFrameSource::Learn() {
+  for (int k = 0; k < options_.foreground.learning_frames; ++k) {
+    for (size_t c = 0; c < sources_.size(); ++c) {
+      Image image;
+      if (sources_[c]->live() && sources_[c]->Read(&image)) learning_[c].push_back(image.bgr.clone());
+    }
+  }
+  for (size_t c = 0; c < sources_.size(); ++c) {
+    if (learning_[c].empty()) ThrowInputError(sources_[c]->name(), "gave no image to learn the background from");
+    foreground_[c].Learn(learning_[c]);
+  }
+  learning_.clear();
+  learnt_ = true;
+}
+
 bool VideoFrameSource::Next(Frame* frame) {
+  if (!learnt_) Learn();
   if (options_.max_frames > 0 && handed_out_ >= options_.max_frames) return false;
   Image first;
   if (!sources_[0]->Read(&first)) return false;
   const auto handed = std::chrono::steady_clock::now();
   const size_t n = sources_.size();
+  const double tolerance = 0.5 / sources_[0]->fps();
+  std::vector<Image> paired(n);
+  // Live cameras each give their newest frame, so another camera's may be a frame ahead
+  // of the first camera's: then the first camera's next (newest) frame is taken instead,
+  // once or twice, before the frame is given up as unpaired.
+  for (int attempt = 0;; ++attempt) {
+    bool complete = true, ahead = false;
+    for (size_t c = 1; c < n; ++c) {
+      // Queue this camera's images up to the first one past the tolerance (a live
+      // camera's: up to the first one not before it, as waiting for a later one would
+      // cost a frame period), forget those before it, and take the nearest within it.
+      std::deque<Image>& queue = queued_[c];
+      const auto more = [&] {
+        if (queue.empty()) return true;
+        return live() ? queue.back().time_s < first.time_s - tolerance : queue.back().time_s <= first.time_s + tolerance;
+      };
+      while (!finished_[c] && more()) {
+        Image image;
+        if (!sources_[c]->Read(&image)) {
+          finished_[c] = true;
+        } else {
+          queue.push_back(std::move(image));
+        }
+      }
+      while (!queue.empty() && queue.front().time_s < first.time_s - tolerance) queue.pop_front();
+      int best = -1;
+      for (int i = 0; i < static_cast<int>(queue.size()) && queue[i].time_s <= first.time_s + tolerance; ++i) {
+        if (best < 0 || std::abs(queue[i].time_s - first.time_s) < std::abs(queue[best].time_s - first.time_s)) best = i;
+      }
+      if (best < 0) {
+        complete = false;
+        ahead = ahead || !queue.empty();
+        continue;
+      }
+      paired[c] = queue[best];
+      queue.erase(queue.begin(), queue.begin() + best + 1);
+    }
+    if (complete || !live() || !ahead || attempt == 2) break;
+    for (size_t c = 1; c < n; ++c) {  // what was taken goes back for the next try
+      if (!paired[c].bgr.empty()) queued_[c].push_front(std::move(paired[c]));
+      paired[c] = Image();
+    }
+    if (!sources_[0]->Read(&first)) return false;
+  }
   frame->index = first.index;
   frame->time_s = first.time_s;
   frame->latency_ms = first.latency_ms;
@@ -85,31 +144,13 @@ bool VideoFrameSource::Next(Frame* frame) {
   frame->images.assign(n, cv::Mat());
   frame->masks.assign(n, cv::Mat());
   frame->images[0] = first.bgr;
-  const double tolerance = 0.5 / sources_[0]->fps();
   for (size_t c = 1; c < n; ++c) {
-    // Queue this camera's images up to the first one past the tolerance, forget those
-    // before it, and take the nearest within it.
-    std::deque<Image>& queue = queued_[c];
-    while (!finished_[c] && (queue.empty() || queue.back().time_s <= first.time_s + tolerance)) {
-      Image image;
-      if (!sources_[c]->Read(&image)) {
-        finished_[c] = true;
-      } else {
-        queue.push_back(std::move(image));
-      }
-    }
-    while (!queue.empty() && queue.front().time_s < first.time_s - tolerance) queue.pop_front();
-    int best = -1;
-    for (int i = 0; i < static_cast<int>(queue.size()) && queue[i].time_s <= first.time_s + tolerance; ++i) {
-      if (best < 0 || std::abs(queue[i].time_s - first.time_s) < std::abs(queue[best].time_s - first.time_s)) best = i;
-    }
-    if (best < 0) {
+    if (paired[c].bgr.empty()) {
       frame->dropped = true;
       continue;
     }
-    frame->images[c] = queue[best].bgr;
-    frame->latency_ms = std::max(frame->latency_ms, queue[best].latency_ms);
-    queue.erase(queue.begin(), queue.begin() + best + 1);
+    frame->images[c] = paired[c].bgr;
+    frame->latency_ms = std::max(frame->latency_ms, paired[c].latency_ms);
   }
   ++handed_out_;
   if (frame->dropped) {

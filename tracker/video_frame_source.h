@@ -30,8 +30,9 @@ class VideoFrameSource : public FrameSource {
  public:
   // One camera per source, same order. InputError naming the source or file: a camera
   // whose image size is not its source's, a background image that is missing or of
-  // another size. Learns each camera's background (live sources: from their first
-  // learning frames, which are not tracked).
+  // another size. Learns each camera's background: files and folders here, live cameras
+  // from their first learning frames at the first Next (they start streaming then, and
+  // those frames are not tracked).
   VideoFrameSource(std::vector<std::unique_ptr<ImageSource>> sources, std::vector<Camera> cameras,
                    const VideoFrameSourceOptions& options);
 
@@ -52,7 +53,11 @@ class VideoFrameSource : public FrameSource {
   std::vector<std::unique_ptr<ImageSource>> sources_;
   std::vector<Camera> cameras_;
   VideoFrameSourceOptions options_;
+  void Learn();  // the live cameras' backgrounds, and every camera's extractor
+
   std::vector<ForegroundExtractor> foreground_;
+  std::vector<std::vector<cv::Mat>> learning_;  // per camera, until learnt
+  bool learnt_ = false;
   std::vector<std::deque<Image>> queued_;  // per camera: images read ahead, not yet paired
   std::vector<bool> finished_;
   int handed_out_ = 0;

@@ -337,5 +337,54 @@ TEST(TrackCli, BadVideosAndFoldersGiveOneLineAndWriteNothing) {
                 "text among images");
 }
 
+// The live path end to end: the clip's first camera played in real time through the
+// V4L2 code by the software camera (--device fake:VIDEO). It tracks at camera speed,
+// reports latency and drops, and the camera going away at the end of the video ends the
+// run cleanly with everything written. A longer take is stopped by Ctrl-C part-way, and
+// what was tracked is written too.
+TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
+  const fs::path& clip = Shared().clip;
+  test::TempDir dir;
+  const std::string camera = " --camera " + (clip / "cam0.yaml").string() + " --background " +
+                             (clip / "background/cam0.png").string();
+  const Result live = TrackVideos(dir.path() / "live", "--device fake:" + (clip / "cam0.avi").string() + camera);
+  ASSERT_EQ(live.status, 0) << live.err;
+  EXPECT_NE(live.err.find("gives 160x120 YUYV at 30 fps"), std::string::npos) << live.err;
+  EXPECT_NE(live.out.find("live: latency from capture to estimate"), std::string::npos) << live.out;
+  EXPECT_NE(live.out.find("went away"), std::string::npos) << live.out;
+  EXPECT_GE(Statuses(dir.path() / "live").size(), 5u);
+
+  // A take of 160 frames (5.3 s), interrupted after 2.5 s.
+  const fs::path take = dir.path() / "take.avi";
+  {
+    cv::VideoWriter writer(take.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, cv::Size(160, 120));
+    cv::Mat image;
+    for (int round = 0; round < 8; ++round) {
+      cv::VideoCapture video((clip / "cam0.avi").string());
+      while (video.read(image)) writer.write(image);
+    }
+  }
+  const fs::path out = dir.path() / "stopped";
+  std::string stdout_text, stderr_text;
+  const int status = test::RunCommand("(" + std::string(JGPM_BINARY) + " track --model " + Shared().model.string() +
+                                          " --device fake:" + take.string() + camera + " --no-overlay --out " +
+                                          out.string() + " & p=$!; sleep 2.5; kill -INT $p; wait $p)",
+                                      &stdout_text, &stderr_text);
+  ASSERT_EQ(status, 0) << stderr_text;
+  EXPECT_NE(stdout_text.find("stopped early: interrupted"), std::string::npos) << stdout_text;
+  const size_t tracked = Statuses(out).size();
+  EXPECT_GT(tracked, 0u);
+  EXPECT_LT(tracked, 160u);
+  EXPECT_TRUE(fs::exists(out / "tracked.bvh"));
+  EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+}
+
+TEST(TrackCli, DevicesListsTheCamerasOrSaysThereIsNone) {
+  const Result r = test::RunJgpm("devices");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.out.find("no V4L2 video devices") != std::string::npos || r.out.find("/dev/video") != std::string::npos)
+      << r.out;
+}
+
 }  // namespace
 }  // namespace jgpm

@@ -7,6 +7,7 @@
 #include "io/error.h"
 #include "tracker/cli/calibration_commands.h"
 #include "tracker/cli/data_commands.h"
+#include "tracker/cli/device_commands.h"
 #include "tracker/cli/prior_commands.h"
 #include "tracker/cli/render_commands.h"
 #include "tracker/cli/track_commands.h"
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   jgpm::cli::AddRenderCommands(app);
   jgpm::cli::AddTrackCommands(app);
   jgpm::cli::AddCalibrationCommands(app);
+  jgpm::cli::AddDeviceCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here
   } catch (const CLI::Success& e) {

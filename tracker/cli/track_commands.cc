@@ -98,6 +98,9 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
+  spec.note = [](const std::string& text) {
+    std::fprintf(stderr, "jgpm: %s\n", text.c_str());
+  };
   ProgressLine line("track");
   int count = 0;
   interrupted = false;
@@ -234,9 +237,9 @@ void AddTrackCommands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   track->add_option("--images", a->job.source.images, "folder of frames (PNG/JPEG, name order), with --fps");
   track->add_option("--fps", a->job.source.images_fps, "the image folder's frame rate");
-  track->add_option("--device", a->job.source.device,
-                    "live V4L2 camera, /dev/videoN (see jgpm devices); fake:VIDEO plays a video through the same "
-                    "code in real time");
+  track->add_option("--device", a->job.source.devices,
+                    "live V4L2 camera, /dev/videoN (see jgpm devices; repeat for several); fake:VIDEO plays a video "
+                    "through the same code in real time");
   track->add_option("--camera", a->job.source.camera_yamls, "calibrated camera YAML per video/images/device source "
                                                             "(jgpm calibrate; repeat, same order)")
       ->check(CLI::ExistingFile);
