@@ -18,6 +18,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
+#include "io/fake_v4l2_device.h"
+#include "io/video_file.h"
 
 namespace jgpm {
 namespace {
@@ -288,6 +290,24 @@ bool V4l2Camera::Read(Image* image) {
   }
   if (ended_.empty()) Unplugged();
   return false;
+}
+
+std::unique_ptr<V4l2Camera> OpenV4l2Camera(const std::string& device, const V4l2Options& options) {
+  if (device.rfind("fake:", 0) != 0) return std::make_unique<V4l2Camera>(device, options, std::make_shared<LibV4l2Api>());
+  auto video = std::make_shared<VideoFileSource>(device.substr(5));
+  auto fake = std::make_shared<FakeV4l2Device>(device);
+  fake->forced_width = video->width();
+  fake->forced_height = video->height();
+  fake->device_fps = video->fps();
+  fake->Play(
+      [video](cv::Mat* frame) {
+        Image image;
+        if (!video->Read(&image)) return false;
+        *frame = image.bgr;
+        return true;
+      },
+      video->fps());
+  return std::make_unique<V4l2Camera>(device, options, fake);
 }
 
 std::vector<V4l2DeviceInfo> ListV4l2Devices(V4l2Api& api, const std::string& dir) {

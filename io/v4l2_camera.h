@@ -89,6 +89,11 @@ class V4l2Camera : public ImageSource {
   std::string ended_;
 };
 
+// The camera a command line names: /dev/videoN through libv4l2, or fake:VIDEO, the
+// software camera (io/fake_v4l2_device.h) playing a video file in real time at its frame
+// rate and size. Errors as the constructor's, or the video's.
+std::unique_ptr<V4l2Camera> OpenV4l2Camera(const std::string& device, const V4l2Options& options);
+
 // One /dev/video* node as `jgpm devices` shows it.
 struct V4l2DeviceInfo {
   std::string path, driver, card, bus;

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "io/error.h"
-#include "io/fake_v4l2_device.h"
 #include "io/image_folder.h"
 #include "io/v4l2_camera.h"
 #include "io/video_file.h"
@@ -30,31 +29,15 @@ Camera SourceCamera(const FrameSourceSpec& spec, const ImageSource& source, size
   return file.camera;
 }
 
-// A live camera: a V4L2 device, or the software one playing a video.
+// A live camera (a V4L2 device, or the software one playing a video), its negotiation
+// told.
 std::unique_ptr<ImageSource> OpenCamera(const FrameSourceSpec& spec, const std::string& device) {
   V4l2Options options;
   options.width = spec.device_width;
   options.height = spec.device_height;
   options.fps = spec.device_fps;
   options.format = spec.device_format;
-  std::shared_ptr<V4l2Api> api;
-  if (device.rfind("fake:", 0) == 0) {
-    auto video = std::make_shared<VideoFileSource>(device.substr(5));
-    auto fake = std::make_shared<FakeV4l2Device>(device);
-    fake->forced_width = video->width();
-    fake->forced_height = video->height();
-    fake->device_fps = video->fps();
-    fake->Play([video](cv::Mat* frame) {
-      Image image;
-      if (!video->Read(&image)) return false;
-      *frame = image.bgr;
-      return true;
-    }, video->fps());
-    api = fake;
-  } else {
-    api = std::make_shared<LibV4l2Api>();
-  }
-  auto camera = std::make_unique<V4l2Camera>(device, options, api);
+  auto camera = OpenV4l2Camera(device, options);
   if (spec.note) spec.note(camera->negotiation());
   return camera;
 }

@@ -21,6 +21,7 @@
 
 #include "io/asf.h"
 #include "io/json_file.h"
+#include "io/text_reader.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -253,9 +254,9 @@ double LargestDifference(const fs::path& a, const fs::path& b) {
 }
 
 // `jgpm track` on the clip's own videos and cameras, not the clip.
-Result TrackVideos(const fs::path& out, const std::string& sources) {
+Result TrackVideos(const fs::path& out, const std::string& sources, int threads = 2) {
   return test::RunJgpm("track --model " + Shared().model.string() + " " + sources + " --out " + out.string() +
-                       " --particles 60 --layers 3 --threads 2 --no-overlay");
+                       " --particles 60 --layers 3 --no-overlay --threads " + std::to_string(threads));
 }
 
 TEST(TrackCli, VideosAndImageFoldersAreTrackedThroughBackgroundSubtraction) {
@@ -273,6 +274,11 @@ TEST(TrackCli, VideosAndImageFoldersAreTrackedThroughBackgroundSubtraction) {
                                                                " --save-masks");
   ASSERT_EQ(videos.status, 0) << videos.err;
   EXPECT_EQ(LargestDifference(dir.path() / "clip", dir.path() / "videos"), 0.0);
+  const Result one_thread = TrackVideos(dir.path() / "one-thread", "--video " + (clip / "cam0.avi").string() +
+                                                                        " --video " + (clip / "cam1.avi").string() +
+                                                                        cameras + plates, 1);
+  ASSERT_EQ(one_thread.status, 0) << one_thread.err;
+  EXPECT_EQ(ReadTextFile(dir.path() / "one-thread/poses.json", "poses"), ReadTextFile(dir.path() / "videos/poses.json", "poses"));
   const std::vector<std::string> statuses = Statuses(dir.path() / "videos");
   EXPECT_EQ(static_cast<int>(statuses.size()), kFrames);
   EXPECT_GE(std::count(statuses.begin(), statuses.end(), "tracked"), kFrames - 2);
@@ -377,6 +383,39 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   EXPECT_LT(tracked, 160u);
   EXPECT_TRUE(fs::exists(out / "tracked.bvh"));
   EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+}
+
+// `jgpm capture`: images of a live camera at the interval asked; each is one of the
+// camera's frames (the oracle: the video the software camera plays), 6 frames apart.
+TEST(TrackCli, CaptureSavesACamerasFramesAtTheIntervalAsked) {
+  const fs::path video = Shared().clip / "cam0.avi";
+  test::TempDir dir;
+  const fs::path out = dir.path() / "shots";
+  const Result r = test::RunJgpm("capture --device fake:" + video.string() + " --out " + out.string() +
+                                 " --count 3 --every 0.2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<cv::Mat> frames;
+  cv::VideoCapture capture(video.string());
+  for (cv::Mat f; capture.read(f);) frames.push_back(f.clone());
+  std::vector<int> matched;
+  for (int k = 0; k < 3; ++k) {
+    const cv::Mat shot = cv::imread((out / cv::format("%06d.png", k)).string());
+    ASSERT_FALSE(shot.empty()) << k;
+    int best = -1;
+    double best_diff = 1e9;
+    for (size_t f = 0; f < frames.size(); ++f) {
+      cv::Mat d;
+      cv::absdiff(shot, frames[f], d);
+      const double diff = cv::mean(d)[0];
+      if (diff < best_diff) best_diff = diff, best = static_cast<int>(f);
+    }
+    EXPECT_LT(best_diff, 3) << "shot " << k;
+    matched.push_back(best);
+  }
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_GE(matched[k] - matched[k - 1], 5) << matched[k - 1] << " -> " << matched[k];
+    EXPECT_LE(matched[k] - matched[k - 1], 7) << matched[k - 1] << " -> " << matched[k];
+  }
 }
 
 TEST(TrackCli, DevicesListsTheCamerasOrSaysThereIsNone) {
