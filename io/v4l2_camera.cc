@@ -120,7 +120,10 @@ V4l2Camera::V4l2Camera(const std::string& path, const V4l2Options& options, std:
     width_ = static_cast<int>(fmt.fmt.pix.width);
     height_ = static_cast<int>(fmt.fmt.pix.height);
     bytes_per_line_ = static_cast<int>(fmt.fmt.pix.bytesperline);
-    if (width_ < 16 || height_ < 16) ThrowInputError(path, "gave an image of " + std::to_string(width_) + "x" + std::to_string(height_));
+    if (width_ < 16 || height_ < 16 || width_ > 16384 || height_ > 16384) {
+      ThrowInputError(path, "gave an image of " + std::to_string(fmt.fmt.pix.width) + "x" +
+                                std::to_string(fmt.fmt.pix.height) + " pixels");
+    }
     if (wanted == V4L2_PIX_FMT_YUYV && bytes_per_line_ < 2 * width_) bytes_per_line_ = 2 * width_;
 
     // The frame rate: asked for; what the device says it gives (some cannot be asked).
@@ -131,7 +134,9 @@ V4l2Camera::V4l2Camera(const std::string& path, const V4l2Options& options, std:
     parm.parm.capture.timeperframe.denominator = static_cast<uint32_t>(std::lround(options.fps * 1000));
     if (Xioctl(VIDIOC_S_PARM, &parm) == 0 && parm.parm.capture.timeperframe.numerator > 0 &&
         parm.parm.capture.timeperframe.denominator > 0) {
-      fps_ = static_cast<double>(parm.parm.capture.timeperframe.denominator) / parm.parm.capture.timeperframe.numerator;
+      const double given = static_cast<double>(parm.parm.capture.timeperframe.denominator) /
+                           parm.parm.capture.timeperframe.numerator;
+      if (given >= 1 && given <= 1000) fps_ = given;  // else the driver's answer is nonsense
     }
     char line[256];
     std::snprintf(line, sizeof(line), "asked %dx%d %s at %g fps, %s gives %dx%d %s at %g fps", options.width,
@@ -246,7 +251,9 @@ bool V4l2Camera::Read(Image* image) {
         Fail("cannot take a frame (VIDIOC_DQBUF)", errno);
       }
       if (b.index >= buffers_.size()) ThrowInputError(path_, "returned buffer " + std::to_string(b.index) + " it never had");
-      if (have_sequence_ && b.sequence > last_sequence_ + 1) dropped_ += static_cast<int>(b.sequence - last_sequence_ - 1);
+      if (have_sequence_ && b.sequence > last_sequence_ + 1) {
+        dropped_ += static_cast<int>(std::min<uint32_t>(b.sequence - last_sequence_ - 1, 1000000));
+      }
       if (!have_sequence_) first_sequence_ = b.sequence;
       have_sequence_ = true;
       last_sequence_ = b.sequence;
@@ -279,10 +286,16 @@ bool V4l2Camera::Read(Image* image) {
       ++undecodable_;
       continue;
     }
-    const double captured = newest.timestamp.tv_sec + newest.timestamp.tv_usec * 1e-6;
+    // Times and frame numbers only go forward, whatever the driver says (a camera that
+    // restarts its sequence, or stamps no time).
+    double captured = newest.timestamp.tv_sec + newest.timestamp.tv_usec * 1e-6;
+    if (delivered_ > 0 && !(captured > last_captured_s_)) captured = last_captured_s_ + 1 / fps_;
+    last_captured_s_ = captured;
+    const long index = static_cast<long>(newest.sequence) - static_cast<long>(first_sequence_);
+    next_index_ = std::max<long>(next_index_, std::min<long>(index, next_index_ + 1000000));
     image->bgr = bgr;
     image->time_s = Since(captured);
-    image->index = static_cast<int>(newest.sequence - first_sequence_);
+    image->index = static_cast<int>(next_index_++);
     const bool monotonic = (newest.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
     image->latency_ms = monotonic ? std::max(0.0, 1000 * (MonotonicNow() - captured)) : 0.0;
     ++delivered_;

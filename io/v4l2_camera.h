@@ -86,6 +86,8 @@ class V4l2Camera : public ImageSource {
   bool have_sequence_ = false;
   uint32_t first_sequence_ = 0, last_sequence_ = 0;
   int delivered_ = 0, dropped_ = 0, undecodable_ = 0;
+  double last_captured_s_ = 0;
+  long next_index_ = 0;
   std::string ended_;
 };
 

@@ -6,6 +6,7 @@
 // and background subtraction).
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,8 @@ struct Frame {
   int index = 0;         // frame number in the source, from 0
   double time_s = 0;     // since the source's first frame
   bool dropped = false;  // nothing was captured: masks and images are empty
-  double latency_ms = 0; // live: from capture until the masks were ready
+  double latency_ms = 0;  // live: from capture until the masks were ready...
+  std::chrono::steady_clock::time_point ready;  // ...which was then
   std::vector<cv::Mat> masks;   // per camera: CV_8UC1, 255 = foreground
   std::vector<cv::Mat> images;  // per camera: BGR, or empty when the source has none
 };

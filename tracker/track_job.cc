@@ -180,13 +180,17 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   if (folder && o.overlays && images_now) overlays.emplace(dir, run, tracker, model->skeleton());
   const auto started = std::chrono::steady_clock::now();
   double latency_sum = 0;
-  int latency_count = 0;
+  int latency_count = 0, frames_seen = 0;
   const auto on_frame = [&](const Frame& frame, TrackedFrame& f) {
     if (result.live && !frame.dropped) {
-      f.latency_ms = frame.latency_ms + 1000 * f.seconds;
-      latency_sum += f.latency_ms;
-      ++latency_count;
-      result.max_latency_ms = std::max(result.max_latency_ms, f.latency_ms);
+      f.latency_ms = frame.latency_ms +
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame.ready).count();
+      // The summary is of the steady state: the frames held for the start wait for it.
+      if (++frames_seen > tracker_options.start_frames) {
+        latency_sum += f.latency_ms;
+        ++latency_count;
+        result.max_latency_ms = std::max(result.max_latency_ms, f.latency_ms);
+      }
     }
     if (progress) progress(f, source->NumFrames(), video ? video->skipped() : 0);
     if (folder && o.save_masks && !frame.dropped) {
@@ -225,7 +229,9 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     result.unpaired = video->unpaired();
   }
   if (latency_count) result.mean_latency_ms = latency_sum / latency_count;
-  if (run.frames.empty()) ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));
+  if (run.frames.empty()) {
+    ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));
+  }
 
   if (clip) {
     std::vector<Eigen::Matrix3Xd> truth;

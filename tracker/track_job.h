@@ -49,7 +49,8 @@ struct TrackJobResult {
   double loop_seconds = 0;  // the tracking loop's wall time: reading and preparing the
                             // frames (decoding, background subtraction) and tracking,
                             // without writing outputs (run.tracking_seconds: filtering)
-  double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate
+  double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate, after the
+                                                   // frames held for the start
 };
 
 // Each tracked frame, the number of frames (-1: live) and the frames the source has lost

@@ -160,7 +160,8 @@ bool VideoFrameSource::Next(Frame* frame) {
   }
   for (size_t c = 0; c < n; ++c) frame->masks[c] = foreground_[c].Apply(frame->images[c]);
   // Latency counts the foreground too: it is part of getting from capture to an estimate.
-  frame->latency_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - handed).count();
+  frame->ready = std::chrono::steady_clock::now();
+  frame->latency_ms += std::chrono::duration<double, std::milli>(frame->ready - handed).count();
   return true;
 }
 

@@ -360,7 +360,8 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   EXPECT_NE(live.out.find("went away"), std::string::npos) << live.out;
   EXPECT_GE(Statuses(dir.path() / "live").size(), 5u);
 
-  // A take of 160 frames (5.3 s), interrupted after 2.5 s.
+  // A take of 160 frames (5.3 s), interrupted once 3 frames are tracked (their masks
+  // written), however slow the machine.
   const fs::path take = dir.path() / "take.avi";
   {
     cv::VideoWriter writer(take.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, cv::Size(160, 120));
@@ -373,8 +374,10 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   const fs::path out = dir.path() / "stopped";
   std::string stdout_text, stderr_text;
   const int status = test::RunCommand("(" + std::string(JGPM_BINARY) + " track --model " + Shared().model.string() +
-                                          " --device fake:" + take.string() + camera + " --no-overlay --out " +
-                                          out.string() + " & p=$!; sleep 2.5; kill -INT $p; wait $p)",
+                                          " --device fake:" + take.string() + camera + " --no-overlay --save-masks --out " +
+                                          out.string() + " & p=$!; for i in $(seq 400); do [ $(ls " + out.string() +
+                                          ".partial/masks/cam0 2>/dev/null | wc -l) -ge 3 ] && break; sleep 0.05; "
+                                          "done; kill -INT $p; wait $p)",
                                       &stdout_text, &stderr_text);
   ASSERT_EQ(status, 0) << stderr_text;
   EXPECT_NE(stdout_text.find("stopped early: interrupted"), std::string::npos) << stdout_text;
@@ -383,6 +386,13 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   EXPECT_LT(tracked, 160u);
   EXPECT_TRUE(fs::exists(out / "tracked.bvh"));
   EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+
+  // --max-seconds bounds the run the same way.
+  const Result bounded =
+      TrackVideos(dir.path() / "bounded", "--device fake:" + take.string() + camera + " --max-seconds 3.5");
+  ASSERT_EQ(bounded.status, 0) << bounded.err;
+  EXPECT_NE(bounded.out.find("stopped early: time limit reached"), std::string::npos) << bounded.out;
+  EXPECT_LT(Statuses(dir.path() / "bounded").size(), 160u);
 }
 
 // `jgpm capture`: images of a live camera at the interval asked; each is one of the

@@ -142,9 +142,9 @@ void RunTrack(TrackArguments a) {
     }
   }
   if (result.live) {
-    std::printf("live: latency from capture to estimate %.1f ms mean, %.1f ms worst; %d frames dropped by the camera "
-                "(processing slower than capture)\n",
-                result.mean_latency_ms, result.max_latency_ms, result.skipped);
+    std::printf("live: latency from capture to estimate %.1f ms mean, %.1f ms worst (after the %d frames the start "
+                "holds); %d frames dropped by the camera (processing slower than capture)\n",
+                result.mean_latency_ms, result.max_latency_ms, a.job.tracker.start_frames, result.skipped);
   } else if (result.skipped > 0) {
     std::printf("%d frame(s) of the video did not decode and were skipped\n", result.skipped);
   }
