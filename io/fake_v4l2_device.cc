@@ -66,11 +66,6 @@ int FakeV4l2Device::Open(const std::string& path, int /*flags*/) {
 int FakeV4l2Device::Close(int fd) { return fd == kFd ? 0 : Failed(EBADF); }
 
 void FakeV4l2Device::Capture(const cv::Mat& bgr, uint32_t sequence, bool damaged) {
-  ++captured_;
-  if (!streaming_ || queued_.empty()) return;  // no free buffer: the frame is lost
-  const uint32_t index = queued_.front();
-  queued_.pop_front();
-  std::vector<uint8_t>& buffer = buffers_[index];
   cv::Mat sized = bgr;
   if (bgr.cols != width_ || bgr.rows != height_) cv::resize(bgr, sized, cv::Size(width_, height_));
   std::vector<uint8_t> bytes;
@@ -79,6 +74,17 @@ void FakeV4l2Device::Capture(const cv::Mat& bgr, uint32_t sequence, bool damaged
   } else {
     cv::imencode(".jpg", sized, bytes, {cv::IMWRITE_JPEG_QUALITY, 90});
   }
+  Fill(bytes, sequence, damaged);
+}
+
+void FakeV4l2Device::CaptureBytes(const std::vector<uint8_t>& bytes, uint32_t sequence) { Fill(bytes, sequence, false); }
+
+void FakeV4l2Device::Fill(const std::vector<uint8_t>& bytes, uint32_t sequence, bool damaged) {
+  ++captured_;
+  if (!streaming_ || queued_.empty()) return;  // no free buffer: the frame is lost
+  const uint32_t index = queued_.front();
+  queued_.pop_front();
+  std::vector<uint8_t>& buffer = buffers_[index];
   const size_t n = std::min(bytes.size(), buffer.size());
   std::copy(bytes.begin(), bytes.begin() + n, buffer.begin());
   timespec now;

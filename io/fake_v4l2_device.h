@@ -39,8 +39,11 @@ class FakeV4l2Device : public V4l2Api {
   int spurious_wakeups = 0;                 // Polls that say "ready" with nothing ready
   std::function<void(FakeV4l2Device&)> before_poll;  // runs at the start of every Poll
 
-  // Scripted frames: captured now, as the device's frame `sequence`.
+  // Scripted frames: captured now, as the device's frame `sequence` (`damaged`: flagged
+  // V4L2_BUF_FLAG_ERROR, as a driver marks a frame lost in transfer).
   void Capture(const cv::Mat& bgr, uint32_t sequence, bool damaged = false);
+  // A frame whose bytes are these, whatever the format (a corrupt MJPG, a short frame).
+  void CaptureBytes(const std::vector<uint8_t>& bytes, uint32_t sequence);
   // Real time: frame k of `next` is captured k / fps seconds after streaming starts, read
   // or not; when `next` has no more, the device is unplugged.
   void Play(std::function<bool(cv::Mat*)> next, double fps);
@@ -68,6 +71,7 @@ class FakeV4l2Device : public V4l2Api {
     bool damaged;
   };
   void Advance();  // real time: capture what is due
+  void Fill(const std::vector<uint8_t>& bytes, uint32_t sequence, bool damaged);
 
   std::string path_;
   uint32_t pixel_format_ = V4L2_PIX_FMT_YUYV;

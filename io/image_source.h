@@ -1,5 +1,5 @@
 // Where one camera's colour images come from: a video file (io/video_file.h), a folder of
-// images (io/image_folder.h) or a live V4L2 camera (io/v4l2_capture.h). The tracker turns
+// images (io/image_folder.h) or a live V4L2 camera (io/v4l2_camera.h). The tracker turns
 // them into foreground masks (tracker/foreground.h) and pairs several cameras' images by
 // time (tracker/video_frame_source.h).
 #pragma once

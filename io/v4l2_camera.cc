@@ -45,14 +45,24 @@ double Since(double capture_s) {
   return capture_s - origin;
 }
 
-std::string Busy() {
-  return "is busy: another program is using it (close it; `fuser -v DEVICE` shows which)";
+std::string Busy(const std::string& path) {
+  return "is busy: another program is using it (close it; `fuser -v " + path + "` shows which)";
 }
 
 }  // namespace
 
+bool V4l2Options::Check(std::string* why) const {
+  auto fail = [why](const std::string& what) { return *why = what, false; };
+  if (width < 16 || height < 16 || width > 16384 || height > 16384) return fail("the image size asked must be 16-16384 pixels a side");
+  if (!(fps >= 1 && fps <= 1000)) return fail("the frame rate asked must be 1-1000 frames/s");
+  if (format != "auto" && format != "yuyv" && format != "mjpg") return fail("the pixel format must be auto, yuyv or mjpg");
+  if (buffers < 2 || buffers > 32) return fail("2-32 streaming buffers");
+  if (timeout_ms < 1) return fail("the frame timeout must be at least 1 ms");
+  return true;
+}
+
 [[noreturn]] void V4l2Camera::Fail(const std::string& what, int error) const {
-  if (error == EBUSY) ThrowInputError(path_, Busy());
+  if (error == EBUSY) ThrowInputError(path_, Busy(path_));
   ThrowInputError(path_, what + " (" + std::strerror(error) + ")");
 }
 
@@ -60,6 +70,8 @@ int V4l2Camera::Xioctl(unsigned long request, void* arg) { return api_->Ioctl(fd
 
 V4l2Camera::V4l2Camera(const std::string& path, const V4l2Options& options, std::shared_ptr<V4l2Api> api)
     : path_(path), options_(options), api_(std::move(api)) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError(path, why);
   struct stat st {};
   if (api_->Stat(path, &st) != 0) ThrowInputError(path, "no such device (jgpm devices lists the cameras)");
   if (!S_ISCHR(st.st_mode)) {

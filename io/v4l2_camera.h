@@ -29,6 +29,8 @@ struct V4l2Options {
   std::string format = "auto";    // auto (YUYV when offered, else MJPG), yuyv, mjpg
   int buffers = 4;
   int timeout_ms = 2000;          // no frame for this long is an error
+
+  bool Check(std::string* why) const;
 };
 
 class V4l2Camera : public ImageSource {

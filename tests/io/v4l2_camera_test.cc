@@ -216,6 +216,45 @@ TEST(V4l2Camera, SkipsDamagedFrames) {
   EXPECT_EQ(camera.undecodable(), 1);
 }
 
+TEST(V4l2Camera, SkipsFramesThatDoNotDecode) {
+  // A corrupt MJPG frame and a YUYV frame cut short are counted and passed over.
+  auto mjpg = std::make_shared<FakeV4l2Device>(kPath);
+  mjpg->formats = {V4L2_PIX_FMT_MJPEG};
+  V4l2Camera camera(kPath, {}, mjpg);
+  camera.Start();
+  mjpg->CaptureBytes(std::vector<uint8_t>(5000, 0x5A), 0);
+  int polls = 0;
+  mjpg->before_poll = [&polls](FakeV4l2Device& d) {
+    if (++polls == 2) d.Capture(FrameImage(3), 1);  // after the corrupt one was taken
+  };
+  Image image;
+  ASSERT_TRUE(camera.Read(&image));
+  EXPECT_EQ(image.index, 1);
+  EXPECT_EQ(camera.undecodable(), 1);
+
+  auto yuyv = std::make_shared<FakeV4l2Device>(kPath);
+  V4l2Camera short_frames(kPath, {}, yuyv);
+  short_frames.Start();
+  yuyv->CaptureBytes(std::vector<uint8_t>(640 * 2 * 100, 128), 0);  // 100 of 480 rows
+  polls = 0;
+  yuyv->before_poll = [&polls](FakeV4l2Device& d) {
+    if (++polls == 2) d.Capture(FrameImage(4), 1);
+  };
+  ASSERT_TRUE(short_frames.Read(&image));
+  EXPECT_EQ(KOf(image.bgr), KOf(FrameImage(4)));
+  EXPECT_EQ(short_frames.undecodable(), 1);
+}
+
+TEST(V4l2Camera, RefusesBadOptions) {
+  auto fake = std::make_shared<FakeV4l2Device>(kPath);
+  V4l2Options zero_fps;
+  zero_fps.fps = 0;
+  EXPECT_NE(ErrorOf(fake, zero_fps).find("frame rate"), std::string::npos);
+  V4l2Options one_buffer;
+  one_buffer.buffers = 1;
+  EXPECT_NE(ErrorOf(fake, one_buffer).find("buffers"), std::string::npos);
+}
+
 TEST(V4l2Camera, UnpluggingEndsTheStreamCleanly) {
   auto fake = std::make_shared<FakeV4l2Device>(kPath);
   V4l2Camera camera(kPath, {}, fake);
