@@ -90,6 +90,7 @@ void FakeV4l2Device::Fill(const std::vector<uint8_t>& bytes, uint32_t sequence, 
   timespec now;
   clock_gettime(CLOCK_MONOTONIC, &now);
   done_.push_back({index, sequence, static_cast<uint32_t>(n), {now.tv_sec, now.tv_nsec / 1000}, damaged});
+  last_filled_ = sequence;
 }
 
 void FakeV4l2Device::Play(std::function<bool(cv::Mat*)> next, double fps) {

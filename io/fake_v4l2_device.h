@@ -53,7 +53,9 @@ class FakeV4l2Device : public V4l2Api {
   int width() const { return width_; }
   int height() const { return height_; }
   uint32_t pixel_format() const { return pixel_format_; }
-  int captured() const { return captured_; }
+  int captured() const { return captured_; }  // frames the camera saw, lost ones included
+  // The sequence number of the last frame put into a buffer (-1: none yet).
+  long last_filled() const { return last_filled_; }
   bool streaming() const { return streaming_; }
 
   int Stat(const std::string& path, struct stat* st) override;
@@ -81,6 +83,7 @@ class FakeV4l2Device : public V4l2Api {
   std::deque<Filled> done_;      // captured, waiting to be dequeued
   bool streaming_ = false, unplugged_ = false;
   int captured_ = 0;
+  long last_filled_ = -1;
   std::function<bool(cv::Mat*)> next_;
   double play_fps_ = 0;
   std::chrono::steady_clock::time_point play_start_;
