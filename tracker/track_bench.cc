@@ -234,9 +234,11 @@ cv::Mat TrackBenchPlot(const std::vector<TrackBenchRow>& rows) {
   double top = 50;
   for (const TrackBenchRow& r : rows) top = std::max(top, r.bt14_mm);
   top = std::ceil(top / 50) * 50;
-  const int group = 40 + 16 * static_cast<int>(series.size()), left = 50, height = 420, base = 320;
-  cv::Mat image(height + 20 * static_cast<int>((series.size() + 2) / 3), left + group * static_cast<int>(clips.size()) + 20,
-                CV_8UC3, cv::Scalar(255, 255, 255));
+  // A group per clip, wide enough for its bars and its name; the image for the title and
+  // the legend.
+  const int group = std::max(165, 40 + 16 * static_cast<int>(series.size())), left = 50, height = 420, base = 320;
+  const int width = std::max(720, left + group * static_cast<int>(clips.size()) + 20);
+  cv::Mat image(height + 20 * static_cast<int>((series.size() + 2) / 3), width, CV_8UC3, cv::Scalar(255, 255, 255));
   Text(image, "Mean 3-D error of 14 joints (mm) per clip: lower is better", {left, 20}, 0.5);
   for (double mm = 0; mm <= top; mm += 50) {
     const int y = base - static_cast<int>(250 * mm / top);
