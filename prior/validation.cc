@@ -34,7 +34,7 @@ double Mean(const std::vector<double>& v) {
 }
 
 struct TrialOutcome {
-  double error_mm = 0;
+  PoseErrors errors;
   bool failed = false;  // inference ended in a numerical failure
 };
 
@@ -66,8 +66,7 @@ TrialOutcome TrialError(const GaitModel& model, const ValidationTrial& trial, in
   }
   const InferenceResult result = InferLatentSequence(model, observations, inference);
   if (!result.poses_deg.allFinite()) ThrowInputError("inference", result.message);
-  return {MeanJointErrorMm(*trial.kinematics, result.poses_deg, truth),
-          result.termination == Termination::kNumericalFailure};
+  return {ComparePoses(*trial.kinematics, result.poses_deg, truth), result.termination == Termination::kNumericalFailure};
 }
 
 }  // namespace
@@ -178,6 +177,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   // errors[i * draws + k]: trial i, draw k. Workers take trials by index, so the result is
   // the same for any number of threads.
   std::vector<double> errors(static_cast<size_t>(n) * draws);
+  std::vector<PoseErrors> details(errors.size());
   std::vector<char> failed(errors.size(), 0);
   // Any exception in a worker is carried to this thread and rethrown there (the first
   // trial's, so which one is reported does not depend on the thread count); an escaping
@@ -188,7 +188,8 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
       try {
         for (int k = 0; k < draws; ++k) {
           const TrialOutcome outcome = TrialError(model, trials[i], i, c, k + 1, inference);
-          errors[i * draws + k] = outcome.error_mm;
+          errors[i * draws + k] = outcome.errors.mean_mm;
+          details[i * draws + k] = outcome.errors;
           failed[i * draws + k] = outcome.failed;
         }
       } catch (...) {
@@ -221,6 +222,17 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
     result.trial_errors_mm.push_back(Mean(std::vector<double>(errors.begin() + i * draws, errors.begin() + (i + 1) * draws)));
   }
   result.mean_error_mm = Mean(result.trial_errors_mm);
+  // Per joint and channel: the mean over trials and draws, as mean_error_mm is.
+  Eigen::VectorXd joint_mm = Eigen::VectorXd::Zero(details[0].joint_mm.size());
+  Eigen::VectorXd channel_deg = Eigen::VectorXd::Zero(details[0].channel_deg.size());
+  for (const PoseErrors& e : details) {
+    joint_mm += e.joint_mm / static_cast<double>(details.size());
+    channel_deg += e.channel_deg / static_cast<double>(details.size());
+  }
+  for (int j = 1; j < static_cast<int>(GaitJoints().size()); ++j) result.joint_names.emplace_back(GaitJoints()[j].name);
+  result.channel_names = model.data().set.channel_names;
+  result.joint_errors_mm.assign(joint_mm.data(), joint_mm.data() + joint_mm.size());
+  result.channel_errors_deg.assign(channel_deg.data(), channel_deg.data() + channel_deg.size());
   result.inference_failures = static_cast<int>(std::count(failed.begin(), failed.end(), 1));
   if (c.task == ValidationTask::kFiltering) {
     for (int k = 0; k < draws; ++k) {
@@ -255,18 +267,29 @@ std::vector<ModelResults> ValidateSuite(
   return suite;
 }
 
-double MeanJointErrorMm(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
+PoseErrors ComparePoses(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
                         const Eigen::MatrixXd& truth) {
-  JGPM_CHECK(estimated.rows() == truth.rows() && estimated.cols() == truth.cols());
-  double total = 0;
+  JGPM_CHECK(estimated.rows() == truth.rows() && estimated.cols() == truth.cols() && truth.rows() > 0);
+  PoseErrors e;
   Eigen::Matrix3Xd a, b;
   for (int t = 0; t < truth.rows(); ++t) {
-    const Eigen::VectorXd e = estimated.row(t).transpose(), g = truth.row(t).transpose();
-    kinematics.Compute(e.data(), &a);
+    const Eigen::VectorXd x = estimated.row(t).transpose(), g = truth.row(t).transpose();
+    kinematics.Compute(x.data(), &a);
     kinematics.Compute(g.data(), &b);
-    total += (a - b).colwise().norm().mean();
+    const Eigen::VectorXd distances = (a - b).colwise().norm().transpose();
+    if (t == 0) e.joint_mm = Eigen::VectorXd::Zero(distances.size());
+    e.joint_mm += distances / static_cast<double>(truth.rows());
   }
-  return total / truth.rows();
+  e.mean_mm = e.joint_mm.mean();
+  // Angles wrap: 359 and 1 degrees are 2 apart.
+  const Eigen::ArrayXXd d = (estimated - truth).array();
+  e.channel_deg = (d - 360 * ((d + 180) / 360).floor()).abs().colwise().mean().matrix().transpose();
+  return e;
+}
+
+double MeanJointErrorMm(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
+                        const Eigen::MatrixXd& truth) {
+  return ComparePoses(kinematics, estimated, truth).mean_mm;
 }
 
 std::vector<ValidationCase> PaperSuite() {

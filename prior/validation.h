@@ -60,6 +60,11 @@ struct ValidationResult {
   ValidationCase validation_case;
   std::vector<std::string> trials;
   std::vector<double> trial_errors_mm;  // per trial (filtering: mean over the draws)
+  // Where the error comes from, over every trial (and draw): each of the 17 measured
+  // joints' mean distance (their mean is mean_error_mm), each channel's mean absolute
+  // angle error.
+  std::vector<std::string> joint_names, channel_names;
+  std::vector<double> joint_errors_mm, channel_errors_deg;
   std::vector<double> draw_errors_mm;   // filtering: mean over the trials, per draw
   double mean_error_mm = 0;
   double std_error_mm = 0;              // filtering: over the draws; else over the trials
@@ -90,8 +95,16 @@ std::vector<ModelResults> ValidateSuite(
     const GaitDataset& dataset, const std::vector<ValidationCase>& cases, int threads,
     const std::function<void(const ModelResults&, size_t done, size_t total)>& progress = {});
 
-// Mean over poses and the 17 measured joints of the distance (mm) between the joints of
-// `estimated` and `truth` (both T x D, degrees) on one skeleton.
+// Estimated poses against true ones (both T x D, degrees) on one skeleton: the mean over
+// poses of each of the 17 measured joints' distance (mm), their mean, and each channel's
+// mean absolute angle difference (degrees, taken the short way round).
+struct PoseErrors {
+  double mean_mm = 0;
+  Eigen::VectorXd joint_mm, channel_deg;
+};
+PoseErrors ComparePoses(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
+                        const Eigen::MatrixXd& truth);
+// ComparePoses(...).mean_mm.
 double MeanJointErrorMm(const GaitPoseKinematics& kinematics, const Eigen::MatrixXd& estimated,
                         const Eigen::MatrixXd& truth);
 

@@ -126,6 +126,13 @@ nlohmann::json ValidationResultJson(const ValidationResult& r) {
   nlohmann::json trials = nlohmann::json::array();
   for (size_t i = 0; i < r.trials.size(); ++i) trials.push_back({{"trial", r.trials[i]}, {"error_mm", r.trial_errors_mm[i]}});
   j["trials"] = trials;
+  nlohmann::json joints = nlohmann::json::array(), channels = nlohmann::json::array();
+  for (size_t k = 0; k < r.joint_names.size(); ++k) joints.push_back({{"joint", r.joint_names[k]}, {"mm", r.joint_errors_mm[k]}});
+  for (size_t k = 0; k < r.channel_names.size(); ++k) {
+    channels.push_back({{"channel", r.channel_names[k]}, {"deg", r.channel_errors_deg[k]}});
+  }
+  j["per_joint_mm"] = joints;
+  j["per_channel_deg"] = channels;
   j["seconds"] = r.seconds;
   return j;
 }
@@ -139,6 +146,25 @@ std::string SuiteCsv(const std::vector<ModelResults>& suite) {
              Number(c.noise, "%g") + "," + Number(c.scale, "%g") + "," + Number(r.mean_error_mm, "%.3f") + "," +
              Number(r.std_error_mm, "%.3f") + "," + std::to_string(r.trials.size()) + "," +
              Number(r.seconds, "%.2f") + "\n";
+    }
+  }
+  return csv;
+}
+
+std::string SuiteDetailCsv(const std::vector<ModelResults>& suite) {
+  std::string csv = "model,task,missing,noise,scale,kind,name,error\n";
+  for (const ModelResults& m : suite) {
+    for (const ValidationResult& r : m.results) {
+      const ValidationCase& c = r.validation_case;
+      const std::string key = m.model + "," + std::string(TaskName(c.task)) + "," +
+                              std::string(MissingPartName(c.missing)) + "," + Number(c.noise, "%g") + "," +
+                              Number(c.scale, "%g") + ",";
+      for (size_t k = 0; k < r.joint_names.size(); ++k) {
+        csv += key + "joint_mm," + r.joint_names[k] + "," + Number(r.joint_errors_mm[k], "%.3f") + "\n";
+      }
+      for (size_t k = 0; k < r.channel_names.size(); ++k) {
+        csv += key + "channel_deg," + r.channel_names[k] + "," + Number(r.channel_errors_deg[k], "%.3f") + "\n";
+      }
     }
   }
   return csv;
@@ -227,6 +253,7 @@ std::vector<std::filesystem::path> WriteValidationOutputs(const std::vector<Mode
   }
   if (!folder.empty()) {
     batch.Add(folder / csv_name, SuiteCsv(suite));
+    batch.Add(folder / (std::filesystem::path(csv_name).stem().string() + "_detail.csv"), SuiteDetailCsv(suite));
     PlotSuite(suite, folder, &batch);
   }
   return batch.Commit();

@@ -351,6 +351,28 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
     }
   }
   ASSERT_EQ(mean_mm.size(), 70u);
+  // The detail: a row per joint and channel of every case, the joints averaging to the
+  // case's mean (both written to 0.001).
+  const std::string detail = ReadTextFile(out / "paper_detail.csv", "detail csv");
+  const int channels = gplvm_model->NumChannels();
+  EXPECT_EQ(Lines(detail), 1 + 2 * 35 * (17 + channels));
+  {
+    std::map<std::string, double> joint_sum;
+    std::istringstream rows(detail);
+    std::string row;
+    std::getline(rows, row);
+    EXPECT_EQ(row, "model,task,missing,noise,scale,kind,name,error");
+    while (std::getline(rows, row)) {
+      std::vector<std::string> cells;
+      std::istringstream fields(row);
+      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      ASSERT_EQ(cells.size(), 8u) << row;
+      const std::string key = cells[0] + "," + cells[1] + "," + cells[2] + "," + cells[3] + "," + cells[4];
+      if (cells[5] == "joint_mm") joint_sum[key] += std::stod(cells[7]) / 17;
+    }
+    ASSERT_EQ(joint_sum.size(), 70u);
+    for (const auto& [key, mean] : joint_sum) EXPECT_NEAR(mean, mean_mm.at(key), 2e-3) << key;
+  }
   ValidationCase left_side;
   left_side.task = ValidationTask::kReconstruction;
   left_side.missing = MissingPart::kLeftSide;

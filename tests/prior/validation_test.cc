@@ -55,6 +55,38 @@ TEST(MeanJointErrorMm, MatchesChordsOfATurnAboutTheVerticalAxis) {
   EXPECT_EQ(MeanJointErrorMm(*kinematics, truth, truth), 0.0);
 }
 
+// Where an error comes from. One channel changed by 7 degrees (and once by 350 degrees
+// the other way, which is 10 degrees): that channel's angle error is exactly that and all
+// others are 0; the joints above it in the chain do not move, the ones below do; and the
+// per-joint errors average to the mean joint error.
+TEST(ComparePoses, PerJointAndPerChannelErrorsSayWhereTheErrorIs) {
+  const auto kinematics = Kinematics35();
+  const GaitPoseLayout& layout = kinematics->layout();
+  const Eigen::MatrixXd truth = test::SyntheticWalks(2, 6).trials[0].cycle.poses;
+  const int knee = Channel(layout, "ltibia.rx");
+  Eigen::MatrixXd bent = truth;
+  bent.col(knee).array() += 7;
+  bent(0, knee) = truth(0, knee) - 350;  // 10 degrees the short way round
+  const PoseErrors e = ComparePoses(*kinematics, bent, truth);
+  ASSERT_EQ(e.joint_mm.size(), 17);
+  ASSERT_EQ(e.channel_deg.size(), truth.cols());
+  for (int k = 0; k < truth.cols(); ++k) {
+    EXPECT_NEAR(e.channel_deg[k], k == knee ? (7.0 * (truth.rows() - 1) + 10) / truth.rows() : 0.0, 1e-9) << k;
+  }
+  EXPECT_NEAR(e.mean_mm, e.joint_mm.mean(), 1e-12);
+  EXPECT_NEAR(e.mean_mm, MeanJointErrorMm(*kinematics, bent, truth), 1e-12);
+  // GaitJoints() 1..17 stand for the ends of their bones: the knee bend moves the end of
+  // the shin (the ankle) and of the foot, and nothing else.
+  for (int j = 1; j < static_cast<int>(GaitJoints().size()); ++j) {
+    const std::string_view name = GaitJoints()[j].name;
+    if (name == "ltibia" || name == "lfoot") {
+      EXPECT_GT(e.joint_mm[j - 1], 1.0) << name;
+    } else {
+      EXPECT_LT(e.joint_mm[j - 1], 1e-9) << name;
+    }
+  }
+}
+
 TEST(ValidationCase, PaperSuiteAndChecks) {
   const std::vector<ValidationCase> suite = PaperSuite();
   ASSERT_EQ(suite.size(), 5u * 7u);  // 5 scales x (interpolation, 3 reconstructions, 3 noise levels)
@@ -119,6 +151,14 @@ TEST(Validate, TrainingCyclesComeBackAndHarderCasesCostMore) {
   double mean = 0;
   for (double e : a.trial_errors_mm) mean += e / a.trial_errors_mm.size();
   EXPECT_NEAR(a.mean_error_mm, mean, 1e-12);
+  // The per-joint errors average to the reported mean; every channel is named.
+  ASSERT_EQ(a.joint_names.size(), 17u);
+  ASSERT_EQ(a.joint_errors_mm.size(), 17u);
+  double joints = 0;
+  for (double e : a.joint_errors_mm) joints += e / 17;
+  EXPECT_NEAR(joints, a.mean_error_mm, 1e-9);
+  EXPECT_EQ(a.channel_names, model->data().set.channel_names);
+  EXPECT_EQ(a.channel_errors_deg.size(), a.channel_names.size());
 
   const ValidationResult side =
       Validate(*model, trials, {ValidationTask::kReconstruction, 1.0, MissingPart::kLeftSide}, {}, 2);

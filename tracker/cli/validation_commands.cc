@@ -1,5 +1,6 @@
 #include "tracker/cli/validation_commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -76,6 +77,23 @@ void RunEval(const EvalArguments& a) {
         line.Finish();
         std::printf("%-22s %-34s %8.2f mm  (std %6.2f, %zu trials, %.1f s)\n", m.model.c_str(),
                     r.validation_case.Label().c_str(), r.mean_error_mm, r.std_error_mm, r.trials.size(), r.seconds);
+        if (total == 1) {  // one case: where its error comes from
+          std::vector<size_t> order(r.joint_names.size());
+          for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+          std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) { return r.joint_errors_mm[x] > r.joint_errors_mm[y]; });
+          std::printf("  largest joint errors:");
+          for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
+            std::printf(" %s %.1f mm", r.joint_names[order[k]].c_str(), r.joint_errors_mm[order[k]]);
+          }
+          order.resize(r.channel_names.size());
+          for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+          std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) { return r.channel_errors_deg[x] > r.channel_errors_deg[y]; });
+          std::printf("\n  largest angle errors:");
+          for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
+            std::printf(" %s %.1f deg", r.channel_names[order[k]].c_str(), r.channel_errors_deg[order[k]]);
+          }
+          std::printf("\n");
+        }
         std::fflush(stdout);
         if (total > 1) line.Update(done, total, "cases");
       });
