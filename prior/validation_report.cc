@@ -106,6 +106,51 @@ cv::Mat Chart(const std::vector<Panel>& panels, const std::vector<std::string>& 
   return image;
 }
 
+// Per joint, each model's error averaged over every case of the suite: horizontal bars,
+// a row of bars per joint, so that where the error comes from can be read off.
+cv::Mat JointChart(const std::vector<ModelResults>& suite) {
+  const std::vector<std::string>& joints = suite[0].results[0].joint_names;
+  const int n = static_cast<int>(joints.size()), models = static_cast<int>(suite.size());
+  std::vector<std::vector<double>> mm(models, std::vector<double>(n, 0.0));
+  double top = 1;
+  for (int m = 0; m < models; ++m) {
+    for (const ValidationResult& r : suite[m].results) {
+      for (int j = 0; j < n && j < static_cast<int>(r.joint_errors_mm.size()); ++j) {
+        mm[m][j] += r.joint_errors_mm[j] / suite[m].results.size();
+      }
+    }
+    for (double v : mm[m]) top = std::max(top, v);
+  }
+  top *= 1.08;
+  const int bar = 9, row = models * bar + 8, left = 110, width = 900, plot = width - left - 30;
+  const int columns = width / 260, legend_rows = (models + columns - 1) / columns;
+  const int axis = 60, height = axis + n * row + 20 + 22 * legend_rows;
+  cv::Mat image(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  Text(image, "Error per joint, mean over the " + std::to_string(suite[0].results.size()) + " case(s) (mm)", {10, 22}, 0.6);
+  const double step = std::pow(10, std::floor(std::log10(top / 2)));
+  const double tick = top / step > 8 ? 2 * step : step;
+  for (double v = 0; v <= top + 1e-9; v += tick) {
+    const int x = left + static_cast<int>(plot * v / top);
+    cv::line(image, {x, axis - 4}, {x, axis + n * row}, {225, 225, 225});
+    Text(image, Number(v, "%g"), {x - 8, axis - 10}, 0.4);
+  }
+  for (int j = 0; j < n; ++j) {
+    const int y0 = axis + j * row + 4;
+    Text(image, joints[j], {10, y0 + models * bar / 2 + 5}, 0.45);
+    for (int m = 0; m < models; ++m) {
+      const int length = static_cast<int>(plot * mm[m][j] / top);
+      cv::rectangle(image, {left, y0 + m * bar}, {left + std::max(0, length - 1), y0 + (m + 1) * bar - 2},
+                    ModelColour(m), cv::FILLED);
+    }
+  }
+  for (int m = 0; m < models; ++m) {
+    const cv::Point at(20 + (m % columns) * 260, axis + n * row + 30 + 22 * (m / columns));
+    cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(m), cv::FILLED);
+    Text(image, suite[m].model, {at.x + 20, at.y}, 0.45);
+  }
+  return image;
+}
+
 }  // namespace
 
 nlohmann::json ValidationResultJson(const ValidationResult& r) {
@@ -171,6 +216,10 @@ std::string SuiteDetailCsv(const std::vector<ModelResults>& suite) {
 }
 
 void PlotSuite(const std::vector<ModelResults>& suite, const std::filesystem::path& folder, OutputBatch* batch) {
+  if (!suite.empty() && !suite[0].results.empty() && !suite[0].results[0].joint_names.empty()) {
+    const std::filesystem::path path = folder / "joints.png";
+    batch->Add(path, EncodePng(JointChart(suite), path.string()));
+  }
   std::vector<std::string> models;
   for (const ModelResults& m : suite) models.push_back(m.model);
   // Panels keyed by (task, condition), groups by scale in descending order as in the paper.

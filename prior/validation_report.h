@@ -27,7 +27,7 @@ std::string SuiteCsv(const std::vector<ModelResults>& suite);
 std::string SuiteDetailCsv(const std::vector<ModelResults>& suite);
 
 // Adds interpolation.png, reconstruction.png and filtering.png in `folder` to `batch`, for
-// the tasks present.
+// the tasks present, and joints.png: each joint's error per model, averaged over the cases.
 void PlotSuite(const std::vector<ModelResults>& suite, const std::filesystem::path& folder, OutputBatch* batch);
 
 // What `jgpm eval` writes, all files or none (InputError if one cannot be written; nothing

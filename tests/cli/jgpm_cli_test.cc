@@ -373,6 +373,41 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
     ASSERT_EQ(joint_sum.size(), 70u);
     for (const auto& [key, mean] : joint_sum) EXPECT_NEAR(mean, mean_mm.at(key), 2e-3) << key;
   }
+  // joints.png: a horizontal bar per joint and model, its length proportional to the
+  // joint's error averaged over the 35 cases (from the detail CSV), to within 2 px. Turned
+  // a quarter so that the bars stand on one baseline.
+  {
+    std::map<std::string, std::vector<double>> per_joint;  // model -> 17, in the CSV's order
+    std::istringstream rows(detail);
+    std::string row;
+    std::getline(rows, row);
+    std::map<std::string, int> seen;
+    while (std::getline(rows, row)) {
+      std::vector<std::string> cells;
+      std::istringstream fields(row);
+      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      if (cells[5] != "joint_mm") continue;
+      std::vector<double>& v = per_joint[cells[0]];
+      v.resize(17, 0.0);
+      v[seen[cells[0]]++ % 17] += std::stod(cells[7]) / 35;
+    }
+    const cv::Mat joints_png = cv::imread((out / "joints.png").string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(joints_png.empty());
+    cv::Mat turned;
+    cv::transpose(joints_png, turned);
+    cv::flip(turned, turned, 0);
+    const std::vector<int> lengths[2] = {BarHeights(turned, {60, 60, 60}), BarHeights(turned, {200, 120, 30})};
+    ASSERT_EQ(lengths[0].size(), 17u);
+    ASSERT_EQ(lengths[1].size(), 17u);
+    const double longest_mm = std::max(*std::max_element(per_joint["pca"].begin(), per_joint["pca"].end()),
+                                       *std::max_element(per_joint["gplvm"].begin(), per_joint["gplvm"].end()));
+    const int longest_px = std::max(*std::max_element(lengths[0].begin(), lengths[0].end()),
+                                    *std::max_element(lengths[1].begin(), lengths[1].end()));
+    for (int j = 0; j < 17; ++j) {
+      EXPECT_NEAR(lengths[0][j], longest_px * per_joint["pca"][j] / longest_mm, 2.0) << "pca, joint " << j;
+      EXPECT_NEAR(lengths[1][j], longest_px * per_joint["gplvm"][j] / longest_mm, 2.0) << "gplvm, joint " << j;
+    }
+  }
   ValidationCase left_side;
   left_side.task = ValidationTask::kReconstruction;
   left_side.missing = MissingPart::kLeftSide;
