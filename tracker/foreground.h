@@ -1,7 +1,12 @@
 // Foreground masks from colour images, where nobody hands the tracker a clean silhouette:
 // OpenCV's background subtraction (MOG2 or KNN, shadows suppressed), started from a picture
-// of the empty scene, then a morphological clean-up and the connected components of the
-// person.
+// of the empty scene, then a morphological clean-up that removes specks.
+//
+// What is kept: every connected component larger than a speck. Choosing the person among
+// them is left to the tracker, which knows where it expects the person (it only counts
+// foreground inside the predicted region; tracker/observation.h) and, at the start, finds
+// the blob the cameras agree on (tracker/person_locator.h): a rule here such as "the
+// largest blob" would lose the person to anything bigger passing by.
 //
 // Why it is started from a picture of the scene: both subtractors learn the background
 // from whatever they see first, and a person walking in view from the first frame would
