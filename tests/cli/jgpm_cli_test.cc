@@ -39,6 +39,14 @@ std::vector<cv::Point> PixelsOf(const cv::Mat& image, const cv::Vec3b& bgr, cons
   return points;
 }
 
+// A CSV row's cells (no quoting in jgpm's CSVs).
+std::vector<std::string> Cells(const std::string& row) {
+  std::vector<std::string> cells;
+  std::istringstream fields(row);
+  for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
 // The filled bars of colour `bgr` in a chart, left to right: for each run of adjacent
 // columns whose longest vertical run of the colour (3 px or more) ends on the bars' common
 // baseline, that run's length. Text and legend swatches end elsewhere or are shorter.
@@ -342,9 +350,7 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
     std::getline(rows, row);
     EXPECT_EQ(row, "model,task,missing,noise,scale,mean_error_mm,std_error_mm,trials,seconds");
     while (std::getline(rows, row)) {
-      std::vector<std::string> cells;
-      std::istringstream fields(row);
-      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      const std::vector<std::string> cells = Cells(row);
       ASSERT_EQ(cells.size(), 9u) << row;
       EXPECT_EQ(cells[7], "2") << row;
       mean_mm[cells[0] + "," + cells[1] + "," + cells[2] + "," + cells[3] + "," + cells[4]] = std::stod(cells[5]);
@@ -363,9 +369,7 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
     std::getline(rows, row);
     EXPECT_EQ(row, "model,task,missing,noise,scale,kind,name,error");
     while (std::getline(rows, row)) {
-      std::vector<std::string> cells;
-      std::istringstream fields(row);
-      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      const std::vector<std::string> cells = Cells(row);
       ASSERT_EQ(cells.size(), 8u) << row;
       const std::string key = cells[0] + "," + cells[1] + "," + cells[2] + "," + cells[3] + "," + cells[4];
       if (cells[5] == "joint_mm") joint_sum[key] += std::stod(cells[7]) / 17;
@@ -383,9 +387,7 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
     std::getline(rows, row);
     std::map<std::string, int> seen;
     while (std::getline(rows, row)) {
-      std::vector<std::string> cells;
-      std::istringstream fields(row);
-      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      const std::vector<std::string> cells = Cells(row);
       if (cells[5] != "joint_mm") continue;
       std::vector<double>& v = per_joint[cells[0]];
       v.resize(17, 0.0);

@@ -48,13 +48,7 @@ extern "C" void OnCaptureInterrupt(int signal) {
 }
 
 void Capture(CaptureArguments a) {
-  if (!a.size.empty()) {
-    char x = 0, rest = 0;
-    if (std::sscanf(a.size.c_str(), "%d%c%d%c", &a.camera.width, &x, &a.camera.height, &rest) != 3 || x != 'x' ||
-        a.camera.width < 16 || a.camera.height < 16) {
-      ThrowInputError("--size " + a.size, "expected WIDTHxHEIGHT, e.g. 640x480");
-    }
-  }
+  if (!a.size.empty()) ParseSizeOption(a.size, &a.camera.width, &a.camera.height);
   const std::unique_ptr<V4l2Camera> camera = OpenV4l2Camera(a.device, a.camera);
   std::fprintf(stderr, "jgpm: %s\n", camera->negotiation().c_str());
   OutputFolder folder(a.out);
@@ -83,6 +77,14 @@ void Capture(CaptureArguments a) {
 }
 
 }  // namespace
+
+void ParseSizeOption(const std::string& text, int* width, int* height) {
+  char x = 0, rest = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", width, &x, height, &rest) != 3 || (x != 'x' && x != 'X') || *width < 16 ||
+      *height < 16 || *width > 8192 || *height > 8192) {
+    ThrowInputError("--size " + text, "expected WIDTHxHEIGHT, e.g. 640x480");
+  }
+}
 
 void AddDeviceCommands(CLI::App& app) {
   CLI::App* devices = app.add_subcommand("devices", "List the V4L2 cameras (/dev/video*) with their driver and formats");

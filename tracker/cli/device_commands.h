@@ -3,9 +3,14 @@
 // that places the camera, an empty-scene picture for `jgpm track --background`).
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 namespace jgpm::cli {
+
+// A camera's `--size`: "640x480" -> 640, 480; InputError naming the option otherwise.
+void ParseSizeOption(const std::string& text, int* width, int* height);
 
 void AddDeviceCommands(CLI::App& app);
 

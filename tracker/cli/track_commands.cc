@@ -14,6 +14,7 @@
 #include "io/error.h"
 #include "io/output_batch.h"
 #include "prior/png_file.h"
+#include "tracker/cli/device_commands.h"
 #include "tracker/cli/progress.h"
 #include "tracker/track_bench.h"
 #include "tracker/track_job.h"
@@ -41,15 +42,6 @@ std::atomic<bool> interrupted{false};
 extern "C" void OnTrackInterrupt(int signal) {
   interrupted = true;
   std::signal(signal, SIG_DFL);
-}
-
-// "640x480" -> 640, 480.
-void ParseSize(const std::string& text, int* width, int* height) {
-  char x = 0, rest = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", width, &x, height, &rest) != 3 || (x != 'x' && x != 'X') || *width < 16 ||
-      *height < 16 || *width > 8192 || *height > 8192) {
-    ThrowInputError("--size " + text, "expected WIDTHxHEIGHT, e.g. 640x480");
-  }
 }
 
 // --show: a window per camera when there is a display, else a note.
@@ -88,7 +80,7 @@ std::vector<int> ParseCameraList(const std::string& text) {
 void RunTrack(TrackArguments a) {
   FrameSourceSpec& spec = a.job.source;
   if (!a.cameras.empty()) spec.clip_cameras = ParseCameraList(a.cameras);
-  if (!a.size.empty()) ParseSize(a.size, &spec.device_width, &spec.device_height);
+  if (!a.size.empty()) ParseSizeOption(a.size, &spec.device_width, &spec.device_height);
   spec.clip_foreground = !spec.clip.empty() && !a.foreground.empty();
   spec.foreground.method = a.foreground == "knn" ? ForegroundMethod::kKnn : ForegroundMethod::kMog2;
   if (!spec.images.empty() && spec.images_fps <= 0) ThrowInputError("--images", "give the folder's frame rate with --fps");
