@@ -11,7 +11,10 @@
 # check comes first (the server must answer within 10 s): offline, the script fails within
 # seconds with one message saying where to put the data instead.
 #
-#   datasets_scripts/fetch_cmu.sh [SPLIT_FILE ...]   (default: every file in splits/)
+#   datasets_scripts/fetch_cmu.sh [SPLIT_FILE ...]   (default: every file in splits/,
+#       walking16.txt included: 66 trials of 16 subjects, 11 of them not in
+#       ../shared/data/cmu)
+#   datasets_scripts/fetch_cmu.sh datasets_scripts/splits/walking16.txt   (just walking16)
 #   JGPM_CMU_URL=URL   to use a mirror (default http://mocap.cs.cmu.edu)
 #   JGPM_DATA_OUT=DIR  to download into DIR instead of ./data/cmu (relative to the
 #                      repository root)
