@@ -35,7 +35,8 @@ double Mean(const std::vector<double>& v) {
 
 struct TrialOutcome {
   PoseErrors errors;
-  bool failed = false;  // inference ended in a numerical failure
+  Eigen::VectorXd posture_deg;  // the offset inference found (zero without adaptation)
+  bool failed = false;          // inference ended in a numerical failure
 };
 
 // Error of one trial under one case, for noise draw `draw` (filtering; 0 otherwise).
@@ -66,7 +67,8 @@ TrialOutcome TrialError(const GaitModel& model, const ValidationTrial& trial, in
   }
   const InferenceResult result = InferLatentSequence(model, observations, inference);
   if (!result.poses_deg.allFinite()) ThrowInputError("inference", result.message);
-  return {ComparePoses(*trial.kinematics, result.poses_deg, truth), result.termination == Termination::kNumericalFailure};
+  return {ComparePoses(*trial.kinematics, result.poses_deg, truth), result.posture_deg,
+          result.termination == Termination::kNumericalFailure};
 }
 
 }  // namespace
@@ -178,6 +180,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   // the same for any number of threads.
   std::vector<double> errors(static_cast<size_t>(n) * draws);
   std::vector<PoseErrors> details(errors.size());
+  std::vector<Eigen::VectorXd> postures(errors.size());
   std::vector<char> failed(errors.size(), 0);
   // Any exception in a worker is carried to this thread and rethrown there (the first
   // trial's, so which one is reported does not depend on the thread count); an escaping
@@ -190,6 +193,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
           const TrialOutcome outcome = TrialError(model, trials[i], i, c, k + 1, inference);
           errors[i * draws + k] = outcome.errors.mean_mm;
           details[i * draws + k] = outcome.errors;
+          postures[i * draws + k] = outcome.posture_deg;
           failed[i * draws + k] = outcome.failed;
         }
       } catch (...) {
@@ -225,14 +229,17 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   // Per joint and channel: the mean over trials and draws, as mean_error_mm is.
   Eigen::VectorXd joint_mm = Eigen::VectorXd::Zero(details[0].joint_mm.size());
   Eigen::VectorXd channel_deg = Eigen::VectorXd::Zero(details[0].channel_deg.size());
-  for (const PoseErrors& e : details) {
-    joint_mm += e.joint_mm / static_cast<double>(details.size());
-    channel_deg += e.channel_deg / static_cast<double>(details.size());
+  Eigen::VectorXd posture_deg = Eigen::VectorXd::Zero(channel_deg.size());
+  for (size_t i = 0; i < details.size(); ++i) {
+    joint_mm += details[i].joint_mm / static_cast<double>(details.size());
+    channel_deg += details[i].channel_deg / static_cast<double>(details.size());
+    posture_deg += postures[i] / static_cast<double>(details.size());
   }
   for (int j = 1; j < static_cast<int>(GaitJoints().size()); ++j) result.joint_names.emplace_back(GaitJoints()[j].name);
   result.channel_names = model.data().set.channel_names;
   result.joint_errors_mm.assign(joint_mm.data(), joint_mm.data() + joint_mm.size());
   result.channel_errors_deg.assign(channel_deg.data(), channel_deg.data() + channel_deg.size());
+  if (inference.adapt_posture) result.channel_posture_deg.assign(posture_deg.data(), posture_deg.data() + posture_deg.size());
   result.inference_failures = static_cast<int>(std::count(failed.begin(), failed.end(), 1));
   if (c.task == ValidationTask::kFiltering) {
     for (int k = 0; k < draws; ++k) {
@@ -250,7 +257,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
 
 std::vector<ModelResults> ValidateSuite(
     const std::vector<const GaitModel*>& models, const std::vector<std::string>& model_names,
-    const GaitDataset& dataset, const std::vector<ValidationCase>& cases, int threads,
+    const GaitDataset& dataset, const std::vector<ValidationCase>& cases, const InferenceOptions& inference, int threads,
     const std::function<void(const ModelResults&, size_t done, size_t total)>& progress) {
   JGPM_CHECK(models.size() == model_names.size());
   std::vector<ModelResults> suite;
@@ -259,7 +266,7 @@ std::vector<ModelResults> ValidateSuite(
     const std::vector<ValidationTrial> trials = LoadValidationTrials(dataset, *models[m]);
     ModelResults results{model_names[m], {}};
     for (const ValidationCase& c : cases) {
-      results.results.push_back(Validate(*models[m], trials, c, InferenceOptions{}, threads));
+      results.results.push_back(Validate(*models[m], trials, c, inference, threads));
       if (progress) progress(results, m * cases.size() + results.results.size(), total);
     }
     suite.push_back(std::move(results));

@@ -65,6 +65,9 @@ struct ValidationResult {
   // angle error.
   std::vector<std::string> joint_names, channel_names;
   std::vector<double> joint_errors_mm, channel_errors_deg;
+  // With inference's adapt_posture, each channel's posture offset, mean over every trial
+  // and draw: what the test subjects' posture differs by, as the prior allows it.
+  std::vector<double> channel_posture_deg;
   std::vector<double> draw_errors_mm;   // filtering: mean over the trials, per draw
   double mean_error_mm = 0;
   double std_error_mm = 0;              // filtering: over the draws; else over the trials
@@ -88,11 +91,11 @@ struct ModelResults {
   std::vector<ValidationResult> results;
 };
 
-// Runs every case on every model (each on `threads` threads); `progress` (may be empty)
-// gets each result with the number of results done and their total.
+// Runs every case on every model (each on `threads` threads, with `inference`);
+// `progress` (may be empty) gets each result with the number of results done and their total.
 std::vector<ModelResults> ValidateSuite(
     const std::vector<const GaitModel*>& models, const std::vector<std::string>& model_names,
-    const GaitDataset& dataset, const std::vector<ValidationCase>& cases, int threads,
+    const GaitDataset& dataset, const std::vector<ValidationCase>& cases, const InferenceOptions& inference, int threads,
     const std::function<void(const ModelResults&, size_t done, size_t total)>& progress = {});
 
 // Estimated poses against true ones (both T x D, degrees) on one skeleton: the mean over

@@ -174,7 +174,9 @@ nlohmann::json ValidationResultJson(const ValidationResult& r) {
   nlohmann::json joints = nlohmann::json::array(), channels = nlohmann::json::array();
   for (size_t k = 0; k < r.joint_names.size(); ++k) joints.push_back({{"joint", r.joint_names[k]}, {"mm", r.joint_errors_mm[k]}});
   for (size_t k = 0; k < r.channel_names.size(); ++k) {
-    channels.push_back({{"channel", r.channel_names[k]}, {"deg", r.channel_errors_deg[k]}});
+    nlohmann::json channel = {{"channel", r.channel_names[k]}, {"deg", r.channel_errors_deg[k]}};
+    if (k < r.channel_posture_deg.size()) channel["posture_offset_deg"] = r.channel_posture_deg[k];
+    channels.push_back(channel);
   }
   j["per_joint_mm"] = joints;
   j["per_channel_deg"] = channels;
@@ -209,6 +211,9 @@ std::string SuiteDetailCsv(const std::vector<ModelResults>& suite) {
       }
       for (size_t k = 0; k < r.channel_names.size(); ++k) {
         csv += key + "channel_deg," + r.channel_names[k] + "," + Number(r.channel_errors_deg[k], "%.3f") + "\n";
+      }
+      for (size_t k = 0; k < r.channel_posture_deg.size(); ++k) {
+        csv += key + "posture_offset_deg," + r.channel_names[k] + "," + Number(r.channel_posture_deg[k], "%.3f") + "\n";
       }
     }
   }
@@ -294,7 +299,7 @@ std::vector<std::filesystem::path> WriteValidationOutputs(const std::vector<Mode
       for (size_t m = 0; m < suite.size(); ++m) {
         nlohmann::json results = nlohmann::json::array();
         for (const ValidationResult& r : suite[m].results) results.push_back(ValidationResultJson(r));
-        j["models"].push_back({{"model", model_paths[m]}, {"results", results}});
+        j["models"].push_back({{"model", model_paths[m]}, {"name", suite[m].model}, {"results", results}});
       }
     }
     j["split"] = split;

@@ -22,8 +22,8 @@ nlohmann::json ValidationResultJson(const ValidationResult& result);
 std::string SuiteCsv(const std::vector<ModelResults>& suite);
 
 // Where each case's error comes from, a row per model, case and joint (kind joint_mm, mm)
-// or channel (kind channel_deg, degrees): model, task, missing, noise, scale, kind, name,
-// error.
+// or channel (kind channel_deg, degrees; and posture_offset_deg, the mean offset posture
+// adaptation found): model, task, missing, noise, scale, kind, name, error.
 std::string SuiteDetailCsv(const std::vector<ModelResults>& suite);
 
 // Adds interpolation.png, reconstruction.png and filtering.png in `folder` to `batch`, for

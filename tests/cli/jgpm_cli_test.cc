@@ -451,6 +451,44 @@ TEST(JgpmCli, EvalOneCaseAndTheSuite) {
   }
 }
 
+// --adapt both: each model twice, as the library validates it without and with posture
+// adaptation; the unseen subject (07) comes closer with it, and its offsets are written.
+TEST(JgpmCli, EvalAdaptsPosture) {
+  test::TempDir dir;
+  const std::string data = " --data " + test::CmuRoot().string();
+  const fs::path pca = dir.path() / "pca.json", json = dir.path() / "e.json";
+  ASSERT_EQ(Jgpm("train --model pca" + data + " --out " + pca.string()).status, 0);
+  const fs::path trials = dir.Write("two.txt", "07_01\n35_10\n");
+  const Result r = Jgpm("eval --model " + pca.string() + " --task interpolation --adapt both --trials " +
+                        trials.string() + data + " --json " + json.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("pca+posture"), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(ReadTextFile(json, "json"));
+  ASSERT_EQ(j["models"].size(), 2u);
+  EXPECT_EQ(j["models"][0]["name"], "pca");
+  EXPECT_EQ(j["models"][1]["name"], "pca+posture");
+  const auto model = ReadModelFile(pca);
+  const GaitDataset dataset = PrepareGaitDataset(test::CmuRoot(), trials.string(), ReadSplit(trials), GaitCycleOptions{});
+  InferenceOptions adapt;
+  adapt.adapt_posture = true;
+  const ValidationResult plain = Validate(*model, LoadValidationTrials(dataset, *model), ValidationCase{});
+  const ValidationResult adapted = Validate(*model, LoadValidationTrials(dataset, *model), ValidationCase{}, adapt);
+  const nlohmann::json& a = j["models"][1]["results"][0];
+  EXPECT_NEAR(j["models"][0]["results"][0]["mean_error_mm"].get<double>(), plain.mean_error_mm, 1e-9 * plain.mean_error_mm);
+  EXPECT_NEAR(a["mean_error_mm"].get<double>(), adapted.mean_error_mm, 1e-9 * adapted.mean_error_mm);
+  EXPECT_LT(adapted.trial_errors_mm[0], 0.8 * plain.trial_errors_mm[0]);  // 07_01
+  ASSERT_EQ(a["per_channel_deg"].size(), static_cast<size_t>(model->NumChannels()));
+  ASSERT_EQ(adapted.channel_posture_deg.size(), static_cast<size_t>(model->NumChannels()));
+  EXPECT_TRUE(plain.channel_posture_deg.empty());
+  for (int k = 0; k < model->NumChannels(); ++k) {
+    EXPECT_NEAR(a["per_channel_deg"][k]["posture_offset_deg"].get<double>(), adapted.channel_posture_deg[k], 1e-9);
+  }
+  EXPECT_FALSE(j["models"][0]["results"][0]["per_channel_deg"][0].contains("posture_offset_deg"));
+  const Result bad = Jgpm("eval --model " + pca.string() + " --task interpolation --adapt size" + data);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--adapt"), std::string::npos) << bad.err;
+}
+
 TEST(JgpmCli, EvalBadInput) {
   test::TempDir dir;
   const fs::path json = dir.path() / "e.json";

@@ -4,12 +4,14 @@
 // best any latent points of the model can do (brute force).
 #include "prior/inference.h"
 #include "prior/pca_gait_model.h"
+#include "prior/posture_prior.h"
 
 #include <limits>
 #include <map>
 #include <numeric>
 #include <random>
 
+#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "prior_test_support.h"
@@ -288,6 +290,173 @@ TEST(Inference, FiltersNoise) {
     EXPECT_LT(final, best + 0.15);
     EXPECT_LT(final, 0.3 * input);
   }
+}
+
+// ---- Posture adaptation (issue #15) ----
+
+// Walks of four people who hold themselves differently (offsets of up to 6 degrees), 2
+// gaits each; and a model of them, trained once per kind.
+const Eigen::MatrixXd& PeopleOffsets() {
+  static const Eigen::MatrixXd offsets = [] {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> uniform(-6, 6);
+    Eigen::MatrixXd o(4, 43);
+    for (int i = 0; i < o.size(); ++i) o.data()[i] = uniform(random);
+    return o;
+  }();
+  return offsets;
+}
+
+const GaitModel& PeopleModel(ModelKind kind) {
+  static std::map<ModelKind, std::unique_ptr<GaitModel>> models;
+  std::unique_ptr<GaitModel>& model = models[kind];
+  if (!model) {
+    TrainingOptions options;
+    options.kind = kind;
+    options.full.max_iterations = 300;
+    model = TrainGaitModel(test::SyntheticSubjectWalks(8, 10, PeopleOffsets()), test::Skeleton35(), options);
+  }
+  return *model;
+}
+
+InferenceOptions Adapting() {
+  InferenceOptions options;
+  options.adapt_posture = true;
+  return options;
+}
+
+// E with an offset: the observed channels of f(x_t) + delta against u_t, plus the prior's
+// 1/2 delta^T Sigma^-1 delta (an LDLT solve against the covariance), plus the latent prior
+// (the same as without an offset: E at delta = 0 without adaptation, and d of adaptation).
+TEST(InferencePosture, EnergyMatchesItsDefinition) {
+  for (ModelKind kind : {ModelKind::kPca, ModelKind::kGpdm}) {
+    SCOPED_TRACE(std::string(ModelKindName(kind)));
+    const GaitModel& model = PeopleModel(kind);
+    const int channels = model.NumChannels();
+    PoseObservations o = Observe(HeldOutWalk(channels), EveryThirdMissing(channels));
+    o.noise_std_deg = Eigen::VectorXd::LinSpaced(channels, 0.0, 4.0);
+    InferenceOptions options = Adapting();
+    options.observation_noise_deg = 3.0;
+    options.adapted_dynamics_tolerance = options.dynamics_tolerance;  // the latent prior of E without adaptation
+    const Eigen::MatrixXd x = model.latent().middleRows(4, 10) + 0.1 * Eigen::MatrixXd::Random(10, 3);
+    const Eigen::VectorXd delta = 3 * Eigen::VectorXd::Random(channels);
+    const Eigen::MatrixXd f = model.MeanPoses(x);
+    double data_with = 0, data_without = 0;
+    for (int t = 0; t < x.rows(); ++t) {
+      for (int k = 0; k < channels; ++k) {
+        if (!o.observed[k]) continue;
+        const double s2 = 9.0 + o.noise_std_deg[k] * o.noise_std_deg[k];
+        data_with += 0.5 * std::pow(f(t, k) + delta[k] - o.poses_deg(t, k), 2) / s2;
+        data_without += 0.5 * std::pow(f(t, k) - o.poses_deg(t, k), 2) / s2;
+      }
+    }
+    const PosturePrior prior = PosturePrior::FromTrainingSet(model.data().set);
+    const double posture = 0.5 * delta.dot(prior.covariance().ldlt().solve(delta));
+    InferenceOptions plain = options;
+    plain.adapt_posture = false;
+    const double latent_prior = SequenceProblem(model, o, plain).Evaluate(x, nullptr) - data_without;
+    SequenceProblem energy(model, o, options);
+    ASSERT_NE(energy.posture(), nullptr);
+    const double expected = data_with + posture + latent_prior;
+    EXPECT_NEAR(energy.Evaluate(x, delta, nullptr, nullptr), expected, 1e-9 * expected);
+    EXPECT_NEAR(energy.Evaluate(x, Eigen::VectorXd::Zero(channels), nullptr, nullptr), data_without + latent_prior,
+                1e-9 * expected);
+  }
+}
+
+TEST(InferencePosture, EnergyGradientMatchesFiniteDifferences) {
+  for (ModelKind kind : {ModelKind::kPca, ModelKind::kMljgpmTorus}) {
+    SCOPED_TRACE(std::string(ModelKindName(kind)));
+    const GaitModel& model = PeopleModel(kind);
+    const int channels = model.NumChannels();
+    PoseObservations o;
+    o.poses_deg = ModelCycle(model, 1) + Eigen::MatrixXd::Random(10, channels);
+    o.observed = EveryThirdMissing(channels);
+    SequenceProblem energy(model, o, Adapting());
+    const Eigen::MatrixXd x = model.latent().middleRows(3, 10) + 0.05 * Eigen::MatrixXd::Random(10, 3);
+    const Eigen::VectorXd delta = 4 * Eigen::VectorXd::Random(channels);
+    Eigen::MatrixXd latent_gradient;
+    Eigen::VectorXd posture_gradient;
+    const double e = energy.Evaluate(x, delta, &latent_gradient, &posture_gradient);
+    const double h = 1e-6, rounding = 1e-13 * std::abs(e) / h;
+    for (int t = 0; t < x.rows(); t += 3) {
+      for (int d = 0; d < 3; ++d) {
+        Eigen::MatrixXd plus = x, minus = x;
+        plus(t, d) += h;
+        minus(t, d) -= h;
+        const double fd = (energy.Evaluate(plus, delta, nullptr, nullptr) - energy.Evaluate(minus, delta, nullptr, nullptr)) / (2 * h);
+        EXPECT_NEAR(latent_gradient(t, d), fd, 1e-5 * std::max(1.0, std::abs(fd)) + rounding) << t << " " << d;
+      }
+    }
+    for (int k = 0; k < channels; ++k) {
+      Eigen::VectorXd plus = delta, minus = delta;
+      plus[k] += h;
+      minus[k] -= h;
+      const double fd = (energy.Evaluate(x, plus, nullptr, nullptr) - energy.Evaluate(x, minus, nullptr, nullptr)) / (2 * h);
+      EXPECT_NEAR(posture_gradient[k], fd, 1e-5 * std::max(1.0, std::abs(fd)) + rounding) << k;
+    }
+  }
+}
+
+// A training cycle with a known offset added (the oracle: that offset). Every model's
+// poses come far closer to it with adaptation. A model that reproduces its training cycles
+// (the premise, checked: ML-JGPM, within 0.01 deg) gives the offset back, within 15% of
+// its size (rms; the prior shrinks it by 1 / (1 + s^2 / (T sigma^2)), a few per cent
+// here); and finds none in the cycle as it was. (PCA and a GPDM trained this briefly
+// reproduce the cycle only to ~2.4 deg: there an offset rightly takes up some of that, and
+// where the model's latent points can move the whole posture, how an offset splits between
+// them and delta is the priors' choice, not the data's.)
+TEST(InferencePosture, RecoversAKnownOffsetAndInventsNone) {
+  for (ModelKind kind : {ModelKind::kPca, ModelKind::kGpdm, ModelKind::kMljgpmTorus}) {
+    SCOPED_TRACE(std::string(ModelKindName(kind)));
+    const GaitModel& model = PeopleModel(kind);
+    const int channels = model.NumChannels();
+    const TrainingSet& set = model.data().set;
+    const Eigen::MatrixXd cycle = set.y_deg.middleRows(set.Row(UnscaledLayer(set), 4, 0), set.poses_per_gait);
+    std::mt19937 random(3);
+    std::normal_distribution<double> normal(0, 1);
+    Eigen::VectorXd added(channels);
+    for (int k = 0; k < channels; ++k) added[k] = 5 * normal(random);
+    PoseObservations o;
+    o.poses_deg = cycle.rowwise() + added.transpose();
+    const InferenceResult adapted = InferLatentSequence(model, o, Adapting());
+    const InferenceResult plain = InferLatentSequence(model, o);
+    const double found = (adapted.posture_deg - added).norm() / added.norm();
+    const double adapted_error = MeanAbsDeg(adapted.poses_deg, o.poses_deg), plain_error = MeanAbsDeg(plain.poses_deg, o.poses_deg);
+    std::cout << ModelKindName(kind) << ": offset (rms " << added.norm() / std::sqrt(channels) << " deg) found within "
+              << 100 * found << "% (worst channel " << (adapted.posture_deg - added).cwiseAbs().maxCoeff()
+              << " deg); poses off by " << adapted_error << " deg (" << plain_error << " without)\n";
+    EXPECT_LT(adapted_error, plain_error / 3);
+    if (kind != ModelKind::kMljgpmTorus) continue;
+    EXPECT_LT(found, 0.15);
+
+    o.poses_deg = cycle;
+    ASSERT_LT(MeanAbsDeg(InferLatentSequence(model, o).poses_deg, cycle), 0.01);
+    const InferenceResult none = InferLatentSequence(model, o, Adapting());
+    const double rms = none.posture_deg.norm() / std::sqrt(channels);
+    std::cout << ModelKindName(kind) << ": the cycle as trained gets an offset of rms " << rms << " deg\n";
+    EXPECT_LT(rms, 0.3);
+  }
+}
+
+// Channels not observed take the prior's conditional mean given the observed channels'
+// offsets, Sigma_mo Sigma_oo^-1 delta_o (the minimum of the prior's energy over delta_m:
+// nothing else in E depends on it), not an offset of data they lack.
+TEST(InferencePosture, MissingChannelsTakeThePriorsConditionalMean) {
+  const GaitModel& model = PeopleModel(ModelKind::kMljgpmTorus);
+  const int channels = model.NumChannels();
+  const TrainingSet& set = model.data().set;
+  const std::vector<bool> observed = EveryThirdMissing(channels);
+  const Eigen::MatrixXd cycle = set.y_deg.middleRows(set.Row(UnscaledLayer(set), 7, 0), set.poses_per_gait);
+  PoseObservations o = Observe(cycle.rowwise() + Eigen::RowVectorXd::Constant(channels, 4.0), observed);
+  const InferenceResult r = InferLatentSequence(model, o, Adapting());
+  std::vector<int> obs, mis;
+  for (int k = 0; k < channels; ++k) (observed[k] ? obs : mis).push_back(k);
+  const Eigen::MatrixXd& sigma = PosturePrior::FromTrainingSet(set).covariance();
+  const Eigen::MatrixXd oo = sigma(obs, obs), mo = sigma(mis, obs);
+  const Eigen::VectorXd expected = mo * oo.ldlt().solve(r.posture_deg(obs));
+  EXPECT_GT(r.posture_deg(obs).mean(), 2.0);  // the premise: an offset was found
+  EXPECT_LT((r.posture_deg(mis) - expected).cwiseAbs().maxCoeff(), 1e-3 * r.posture_deg(obs).cwiseAbs().maxCoeff());
 }
 
 // A model whose predictions are not finite: Levenberg-Marquardt cannot take a step, and

@@ -70,4 +70,19 @@ inline std::unique_ptr<GaitModel> TrainOnSyntheticWalks(ModelKind kind, Learning
   return TrainGaitModel(SyntheticWalks(5, 10), Skeleton35(), options);
 }
 
+// SyntheticWalks(gaits, poses) as walks of several people: gait g belongs to subject
+// 91 + g % offsets.size() and holds itself offset by that subject's row of `offsets`
+// (subjects x D degrees, added to every pose of its cycles).
+inline GaitDataset SyntheticSubjectWalks(int gaits, int poses, const Eigen::MatrixXd& offsets) {
+  GaitDataset dataset = SyntheticWalks(gaits, poses);
+  for (int g = 0; g < gaits; ++g) {
+    GaitTrial& trial = dataset.trials[g];
+    const int s = g % static_cast<int>(offsets.rows());
+    trial.id.subject = std::to_string(91 + s);
+    trial.id.name = trial.id.subject + "_" + std::to_string(10 + g);
+    trial.cycle.poses.rowwise() += offsets.row(s);
+  }
+  return dataset;
+}
+
 }  // namespace jgpm::test

@@ -30,6 +30,7 @@ struct EvalArguments {
   double noise = 0;
   int draws = 5;
   int threads = 0;
+  std::string adapt = "none";
   std::string json;
   std::string out;
 };
@@ -69,15 +70,32 @@ void RunEval(const EvalArguments& a) {
   if (!a.out.empty()) std::filesystem::create_directories(a.out);
   const int threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
 
+  // Each model without and/or with posture adaptation ("+posture" in its name).
+  std::vector<bool> adapt_modes;
+  if (a.adapt != "posture") adapt_modes.push_back(false);
+  if (a.adapt != "none") adapt_modes.push_back(true);
+  const size_t runs = adapt_modes.size() * models.size() * cases.size();
+
   const auto start = std::chrono::steady_clock::now();
   ProgressLine line("eval", 0);
-  const std::vector<ModelResults> suite =
-      ValidateSuite(model_pointers, names, dataset, cases, threads, [&](const ModelResults& m, size_t done, size_t total) {
+  std::vector<ModelResults> suite;
+  std::vector<std::string> model_paths;
+  for (const bool adapt : adapt_modes) {
+    InferenceOptions inference;
+    inference.adapt_posture = adapt;
+    std::vector<std::string> run_names = names;
+    if (adapt) for (std::string& name : run_names) name += "+posture";
+    const size_t before = suite.size() * cases.size();
+    std::vector<ModelResults> results = ValidateSuite(
+        model_pointers, run_names, dataset, cases, inference, threads,
+        [&](const ModelResults& m, size_t done, size_t) {
+          done += before;
+          const size_t total = runs;
         const ValidationResult& r = m.results.back();
         line.Finish();
         std::printf("%-22s %-34s %8.2f mm  (std %6.2f, %zu trials, %.1f s)\n", m.model.c_str(),
                     r.validation_case.Label().c_str(), r.mean_error_mm, r.std_error_mm, r.trials.size(), r.seconds);
-        if (total == 1) {  // one case: where its error comes from
+        if (cases.size() == 1 && models.size() == 1) {  // one case: where its error comes from
           std::vector<size_t> order(r.joint_names.size());
           for (size_t k = 0; k < order.size(); ++k) order[k] = k;
           std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) { return r.joint_errors_mm[x] > r.joint_errors_mm[y]; });
@@ -97,12 +115,15 @@ void RunEval(const EvalArguments& a) {
         std::fflush(stdout);
         if (total > 1) line.Update(done, total, "cases");
       });
+    suite.insert(suite.end(), results.begin(), results.end());
+    model_paths.insert(model_paths.end(), a.models.begin(), a.models.end());
+  }
   line.Finish();
   const std::string csv_name = a.suite.empty() ? "eval.csv" : a.suite + ".csv";
-  for (const auto& file : WriteValidationOutputs(suite, a.models, a.trials, a.json, a.out, csv_name)) {
+  for (const auto& file : WriteValidationOutputs(suite, model_paths, a.trials, a.json, a.out, csv_name)) {
     std::printf("wrote %s\n", file.string().c_str());
   }
-  std::printf("%zu case(s) x %zu model(s) in %.1f s\n", cases.size(), models.size(),
+  std::printf("%zu case(s) x %zu model(s) in %.1f s\n", cases.size(), suite.size(),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
@@ -128,6 +149,11 @@ void AddValidationCommands(CLI::App& app) {
   eval->add_option("--draws", a->draws, "filtering: noise draws")->check(CLI::Range(1, 1000))->capture_default_str();
   eval->add_option("--threads", a->threads, "trials evaluated in parallel (0: all cores)")
       ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  eval->add_option("--adapt", a->adapt,
+                   "posture: estimate a per-sequence posture offset with the latent points (for people the "
+                   "prior has not seen); both: each model without and with it")
+      ->check(CLI::IsMember({"none", "posture", "both"}))
       ->capture_default_str();
   eval->add_option("--json", a->json, "write mean_error_mm and per-trial errors here");
   eval->add_option("--out", a->out, "folder for the CSV and the PNG charts");
