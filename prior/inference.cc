@@ -194,7 +194,7 @@ bool InferenceOptions::Check(std::string* why) const {
   else if (!(dynamics_tolerance > 0)) problem = "dynamics_tolerance must be > 0";
   else if (!(adapted_dynamics_tolerance > 0)) problem = "adapted_dynamics_tolerance must be > 0";
   else if (adapt_posture && !posture.Check(&why_posture)) problem = why_posture.c_str();
-  else if (max_iterations < 0) problem = "max_iterations must be >= 0";
+  else if (max_iterations < 0 || adapted_max_iterations < 0) problem = "max_iterations must be >= 0";
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr;
 }
@@ -210,7 +210,7 @@ struct SequenceProblem::Impl {
           options.evaluation_callback = &means;
           return options;
         }()),
-        max_iterations(options.max_iterations) {}
+        max_iterations(options.adapt_posture ? options.adapted_max_iterations : options.max_iterations) {}
   const GaitModel& model;
   const int t;
   const std::unique_ptr<const PosturePrior> posture;  // when adapting

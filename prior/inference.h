@@ -37,6 +37,9 @@
 // model's walk more: d is adapted_dynamics_tolerance (0.25 mean steps; on the test split
 // subject 07 43.0 -> 40.1 mm, 35/39 17.4 either way; without adaptation 0.25 is worse,
 // 34.8 -> 35.8 mm). J^T J stays sparse: block tridiagonal plus a border of D columns.
+// An adapted iteration costs more (the border in the linear solve; fewer rejected steps,
+// so more Jacobians): 12 of them take ~10% longer than 15 plain ones and reach the
+// subject-07 error of 15 or 25 (40.1 mm; 35/39: 18.4, 17.4, 17.0 mm).
 #pragma once
 
 #include <memory>
@@ -59,6 +62,7 @@ struct InferenceOptions {
   int max_iterations = 15;  // Levenberg-Marquardt iterations
   bool adapt_posture = false;   // estimate a posture offset with the latent points
   double adapted_dynamics_tolerance = 0.25;  // d when adapting
+  int adapted_max_iterations = 12;           // and its iterations
   PosturePriorOptions posture;  // its prior (from the model's training subjects)
 
   bool Check(std::string* why) const;

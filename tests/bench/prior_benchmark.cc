@@ -4,6 +4,7 @@
 // change these costs, so it is trained for a few iterations only.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <random>
 
 #include "io/data_root.h"
@@ -11,15 +12,20 @@
 #include "io/text_reader.h"
 #include "prior/blas_threads.h"
 #include "prior/rbf_row.h"
+#include "prior/inference.h"
+#include "prior/model_file.h"
 #include "prior/train.h"
 #include "test_support.h"
 
 namespace jgpm {
 namespace {
 
+// $JGPM_MODEL (a model file, e.g. the quick start's) when set: the inference figures
+// depend on how far the solver goes, which a 2-iteration model does not show.
 const GaitModel& Model() {
-  static const std::unique_ptr<GaitModel> model = [] {
+  static const std::unique_ptr<GaitModel> model = []() -> std::unique_ptr<GaitModel> {
     static const LinearAlgebraThreadScope one_thread(1);  // per-call costs on one core
+    if (const char* path = std::getenv("JGPM_MODEL")) return ReadModelFile(path);
     const GaitDataset dataset =
         PrepareGaitDataset(test::CmuRoot(), "train", test::SplitTrials("train"), GaitCycleOptions{});
     TrainingOptions options;
@@ -115,6 +121,23 @@ void BM_LogPriorWithGradient(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(model.LogPrior(queries[i++ % queries.size()], &gradient));
 }
 BENCHMARK(BM_LogPriorWithGradient)->Unit(benchmark::kMicrosecond);
+
+// Sequence inference (eq. 15) of subject 07's first cycle (unseen in training), without
+// (0) and with (1) posture adaptation, side by side: the budget is +20%.
+void BM_InferCycle(benchmark::State& state) {
+  const GaitModel& model = Model();
+  static const GaitDataset test =
+      PrepareGaitDataset(test::CmuRoot(), "test", test::SplitTrials("test"), GaitCycleOptions{});
+  PoseObservations observations;
+  observations.poses_deg = test.trials[0].cycle.poses;
+  InferenceOptions options;
+  options.adapt_posture = state.range(0) == 1;
+  int iterations = 0;
+  for (auto _ : state) iterations = InferLatentSequence(model, observations, options).iterations;
+  state.SetLabel(test.trials[0].id.name + (options.adapt_posture ? " adapted" : " plain"));
+  state.counters["lm_iterations"] = iterations;
+}
+BENCHMARK(BM_InferCycle)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace jgpm
