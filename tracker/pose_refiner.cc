@@ -34,6 +34,7 @@ bool RefinementOptions::Check(std::string* why) const {
   else if (!(floor_deg > 0)) problem = "floor_deg must be > 0";
   else if (!(temperature > 0)) problem = "temperature must be > 0";
   else if (!(offset_rate >= 0 && offset_rate <= 1)) problem = "offset_rate must be in [0, 1]";
+  else if (!posture.Check(why)) return false;
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr;
 }
@@ -52,11 +53,15 @@ PoseRefiner::PoseRefiner(const GaitModel& model, const SilhouetteLikelihood& lik
     }
     if (!channels.empty()) blocks_.push_back(channels);
   }
-  offset_ = Eigen::VectorXd::Zero(model.NumChannels());
+  if (options.adapt_posture) posture_.emplace(PosturePrior::FromTrainingSet(model.data().set), options.posture);
+  Reset();
   for (int w = 0; w < pool->size(); ++w) scratch_.push_back({Eigen::Matrix3Xd(), {}, likelihood.NewWorkspace()});
 }
 
-void PoseRefiner::Reset() { offset_.setZero(); }
+void PoseRefiner::Reset() {
+  offset_ = Eigen::VectorXd::Zero(model_.NumChannels());
+  if (posture_) posture_->Reset();
+}
 
 double PoseRefiner::Cost(const Eigen::VectorXd& pose, const double* p, const std::vector<CameraObservation>& observations,
                          int worker) const {
@@ -77,8 +82,9 @@ PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const E
   const Eigen::VectorXd s = (std::sqrt(std::max(variance, 0.0)) * model_.data().set.scale.transpose())
                                 .cwiseMax(options_.floor_deg);
   const double start[4] = {x_mm, z_mm, heading_rad, size};
+  const Eigen::VectorXd centre = posture_ ? Eigen::VectorXd(pose_deg + offset_) : pose_deg;
   auto energy = [&](const Eigen::VectorXd& pose, const double* p, int worker) {
-    double penalty = 0.5 * ((pose - pose_deg).cwiseQuotient(s)).squaredNorm();
+    double penalty = 0.5 * ((pose - centre).cwiseQuotient(s)).squaredNorm();
     for (int i = 0; i < 4; ++i) penalty += 0.5 * std::pow((p[i] - start[i]) / kPlacementScale[i], 2);
     return Cost(pose, p, observations, worker) / options_.temperature + penalty;
   };
@@ -118,7 +124,12 @@ PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const E
       }
     }
   }
-  offset_ += options_.offset_rate * ((current - pose_deg) - offset_);
+  if (posture_) {
+    posture_->Add(current - pose_deg);
+    offset_ = posture_->offset();
+  } else {
+    offset_ += options_.offset_rate * ((current - pose_deg) - offset_);
+  }
   r.pose_deg = current;
   r.x_mm = placement[0];
   r.z_mm = placement[1];

@@ -10,10 +10,16 @@
 // floor_deg (near the training data the GP's variance is the noise level, a degree or two,
 // while an unseen subject's posture differs by 10-30 degrees: the floor lets silhouettes
 // move a joint that far when they clearly show it, and what they cannot show, e.g. the
-// head's roll seen from the side, stays at the prior). The person's posture changes
-// slowly: each frame's search starts from the running mean of the deviations found so far.
+// head's roll seen from the side, stays at the prior).
+//
+// The person's posture: with adapt_posture, the offset is a per-person state under the
+// training subjects' posture prior (tracker/posture_state.h); the search starts at the
+// model's pose plus it and the penalty is centred there. Without, the search starts from
+// the running mean of the deviations (rate offset_rate) and the penalty is centred on the
+// model's pose.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +28,7 @@
 #include "prior/gait_model.h"
 #include "tracker/body_model.h"
 #include "tracker/likelihood.h"
+#include "tracker/posture_state.h"
 #include "tracker/state_model.h"
 #include "tracker/thread_pool.h"
 
@@ -37,6 +44,8 @@ struct RefinementOptions {
   double temperature = 0.02;   // cost units worth one unit of the prior's penalty
   bool refine_size = true;     // false: the skeleton is the subject's own (jgpm track --asf)
   double offset_rate = 0.15;   // how fast the running posture offset follows each frame's
+  bool adapt_posture = true;   // the posture offset as a per-person state (above)
+  PostureStateOptions posture;
 
   bool Check(std::string* why) const;
 };
@@ -73,7 +82,8 @@ class PoseRefiner {
   ThreadPool* pool_;
   PosePlacer placer_;
   std::vector<std::vector<int>> blocks_;  // channel indices per block
-  Eigen::VectorXd offset_;                // running posture offset (degrees)
+  Eigen::VectorXd offset_;                // the posture offset (degrees)
+  std::optional<PostureState> posture_;   // with adapt_posture
   struct Scratch {
     Eigen::Matrix3Xd joints;
     std::vector<Capsule> capsules;

@@ -28,6 +28,7 @@ struct TrackArguments {
   std::string cameras;
   std::string init = "auto";
   std::string space = "model";
+  std::string adapt = "posture";
   std::string foreground;  // "" : a clip's masks, or mog2 for other sources
   std::string size;        // a live camera's WxH
   bool no_latent_prior = false;
@@ -87,6 +88,7 @@ void RunTrack(TrackArguments a) {
   a.job.truth_start = a.init == "truth";
   a.job.overlays = !a.no_overlay;
   a.job.tracker.space = a.space == "joint-space" ? StateSpace::kJointSpace : StateSpace::kModel;
+  a.job.tracker.refinement.adapt_posture = a.adapt == "posture";
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
@@ -155,6 +157,7 @@ struct BenchArguments {
   std::vector<std::string> baselines = {"joint-space", "no-latent-prior", "known-skeleton", "from-video"};
   bool no_budget = false;
   int threads = 0;
+  std::string adapt = "posture";
   TrackBenchOptions bench;
 };
 
@@ -168,6 +171,7 @@ void RunBench(BenchArguments a) {
   a.bench.known_skeleton = asked("known-skeleton");
   a.bench.from_video = asked("from-video");
   a.bench.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
+  a.bench.tracker.refinement.adapt_posture = a.adapt == "posture";
   {
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
@@ -292,6 +296,10 @@ void AddTrackCommands(CLI::App& app) {
       ->check(CLI::IsMember({"model", "joint-space"}))
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
+  const char* adapt_help =
+      "posture: the person's posture offset is a state under the training subjects' posture prior; none: a running "
+      "mean of the refinement's deviations";
+  track->add_option("--adapt", a->adapt, adapt_help)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
       ->check(CLI::NonNegativeNumber)
@@ -321,6 +329,7 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track_bench->add_option("--max-frames", b->bench.max_frames, "frames per clip (0: all)")->check(CLI::NonNegativeNumber);
   track_bench->add_option("--threads", b->threads, "threads (0: all cores)")->check(CLI::Range(0, 256));
+  track_bench->add_option("--adapt", b->adapt, adapt_help)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track_bench->add_option("--budget-clip", b->budget_clip, "the clip of the accuracy-versus-budget curve")
       ->capture_default_str();
   track_bench->add_option("--baseline", b->baselines,

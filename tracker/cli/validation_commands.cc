@@ -5,12 +5,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <thread>
 
 #include "io/data_root.h"
 #include "io/error.h"
 #include "io/gait_dataset.h"
 #include "io/split.h"
+#include "io/json_file.h"
+#include "io/output_batch.h"
+#include "prior/loso.h"
 #include "prior/model_file.h"
 #include "prior/validation.h"
 #include "prior/validation_report.h"
@@ -31,11 +35,111 @@ struct EvalArguments {
   int draws = 5;
   int threads = 0;
   std::string adapt = "none";
+  std::string kinds = "pca,jgpm,mljgpm-torus,mljgpm-cyl";
+  double max_time = 0;
+  int max_per_subject = 9;
+  bool trials_given = false;
   std::string json;
   std::string out;
 };
 
+std::vector<bool> AdaptModes(const std::string& adapt) {  // none, posture, both
+  std::vector<bool> modes;
+  if (adapt != "posture") modes.push_back(false);
+  if (adapt != "none") modes.push_back(true);
+  return modes;
+}
+
+// `jgpm eval --suite loso`: trains each kind per held-out subject (or reads the model an
+// earlier run left in OUT/models, after checking it was trained on the same trials), then
+// validates it on that subject.
+void RunLoso(const EvalArguments& a) {
+  if (!a.models.empty()) ThrowInputError("--model", "--suite loso trains its own models: give --kinds instead");
+  if (!a.task.empty()) ThrowInputError("--task", "--suite loso validates interpolation at s = 1; give no --task");
+  if (a.out.empty()) ThrowInputError("--suite loso", "needs --out DIR for the CSV and the fold models");
+  LosoOptions options;
+  options.kinds.clear();
+  std::stringstream list(a.kinds);
+  for (std::string name; std::getline(list, name, ',');) {
+    ModelKind kind;
+    if (!ParseModelKind(name, &kind)) ThrowInputError("--kinds " + a.kinds, "'" + name + "' is not one of " + ModelKindList());
+    options.kinds.push_back(kind);
+  }
+  options.adapt = AdaptModes(a.adapt);
+  options.max_trials_per_subject = a.max_per_subject;
+  options.max_training_seconds = a.max_time;
+  options.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("--suite loso", why);
+  const std::string split = a.trials_given ? a.trials : "walking";
+  const std::vector<TrialId> trial_ids = ReadSplit(ResolveSplitPath(split, JGPM_SPLITS_DIR));
+  const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
+  const GaitDataset dataset = PrepareGaitDataset(root, split, trial_ids, GaitCycleOptions{});
+  const std::vector<LosoFold> folds = LosoFolds(dataset, options.max_trials_per_subject);
+  const std::filesystem::path models = std::filesystem::path(a.out) / "models";
+  std::filesystem::create_directories(models);
+  std::printf("leave-one-subject-out on %s: %zu subjects, %zu model kinds\n", split.c_str(), folds.size(),
+              options.kinds.size());
+  std::fflush(stdout);
+
+  const auto start = std::chrono::steady_clock::now();
+  auto model_for = [&](const LosoFold& fold, ModelKind kind) -> std::unique_ptr<GaitModel> {
+    const std::string name = std::string(ModelKindName(kind)) + "-without-" + fold.subject;
+    const std::filesystem::path path = models / (name + ".json");
+    std::vector<std::string> ids;
+    for (const GaitTrial& t : fold.train.trials) ids.push_back(t.id.name);
+    if (std::filesystem::exists(path)) {
+      std::unique_ptr<GaitModel> model = ReadModelFile(path);
+      if (model->kind() != kind || model->data().set.gait_ids != ids) {
+        ThrowInputError(path.string(), "was trained on other trials or is another kind; remove it to train it again");
+      }
+      std::printf("%-26s read from %s\n", name.c_str(), path.string().c_str());
+      return model;
+    }
+    ProgressLine line("train " + name);
+    const auto begin = std::chrono::steady_clock::now();
+    std::unique_ptr<GaitModel> model =
+        TrainLosoModel(fold, kind, options.max_training_seconds, options.threads, [&line](const TrainingProgress& p) {
+          line.Update(p.iteration, p.max_iterations, p.stage == "local" ? "steps" : "iterations");
+        });
+    line.Finish();
+    WriteModelFile(path, *model);
+    std::printf("%-26s trained on %zu trials in %.0f s: %s\n", name.c_str(), ids.size(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count(), path.string().c_str());
+    std::fflush(stdout);
+    return model;
+  };
+  const std::vector<LosoResult> results = RunLoso(folds, options, model_for, [](const LosoResult& r, size_t, size_t) {
+    std::printf("without %-4s %-14s %-9s %8.2f mm  (std %6.2f, %zu trials, %.1f s)\n", r.subject.c_str(),
+                std::string(ModelKindName(r.kind)).c_str(), r.adapted ? "+posture" : "", r.validation.mean_error_mm,
+                r.validation.std_error_mm, r.validation.trials.size(), r.validation.seconds);
+    std::fflush(stdout);
+  });
+  OutputBatch batch;
+  const std::string csv = LosoCsv(results);
+  batch.Add(std::filesystem::path(a.out) / "loso.csv", csv);
+  nlohmann::json j = nlohmann::json::array();
+  for (const LosoResult& r : results) {
+    nlohmann::json row = ValidationResultJson(r.validation);
+    row["held_out_subject"] = r.subject;
+    row["model"] = std::string(ModelKindName(r.kind));
+    row["adapted"] = r.adapted;
+    j.push_back(row);
+  }
+  batch.Add(std::filesystem::path(a.out) / "loso.json", FormatJson(nlohmann::json{{"split", split}, {"results", j}}));
+  if (!a.json.empty()) batch.Add(a.json, FormatJson(nlohmann::json{{"split", split}, {"results", j}}));
+  std::printf("\nmean over the held-out subjects (each weighing alike):\n");
+  std::istringstream rows(csv);
+  for (std::string row; std::getline(rows, row);) {
+    if (row.rfind("mean,", 0) == 0) std::printf("  %s\n", row.c_str());
+  }
+  for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
+  std::printf("%zu fold(s) in %.1f s\n", folds.size(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
 void RunEval(const EvalArguments& a) {
+  if (a.suite == "loso") return RunLoso(a);
   if (a.models.empty()) ThrowInputError("--model", "give at least one model file");
   std::vector<ValidationCase> cases;
   if (!a.suite.empty()) {
@@ -71,9 +175,7 @@ void RunEval(const EvalArguments& a) {
   const int threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
 
   // Each model without and/or with posture adaptation ("+posture" in its name).
-  std::vector<bool> adapt_modes;
-  if (a.adapt != "posture") adapt_modes.push_back(false);
-  if (a.adapt != "none") adapt_modes.push_back(true);
+  const std::vector<bool> adapt_modes = AdaptModes(a.adapt);
   const size_t runs = adapt_modes.size() * models.size() * cases.size();
 
   const auto start = std::chrono::steady_clock::now();
@@ -132,11 +234,20 @@ void RunEval(const EvalArguments& a) {
 void AddValidationCommands(CLI::App& app) {
   auto a = std::make_shared<EvalArguments>();
   CLI::App* eval = app.add_subcommand("eval", "Validate gait priors as the paper does: interpolation, reconstruction, filtering");
-  eval->add_option("--model", a->models, "model file (repeat for several with --suite)")->required();
+  eval->add_option("--model", a->models, "model file (repeat for several with --suite paper)");
   eval->add_option("--task", a->task, "one task")->check(CLI::IsMember({"interpolation", "reconstruction", "filtering"}));
-  eval->add_option("--suite", a->suite, "every task, scale and condition of the paper (Figs. 9, 12, 13)")
-      ->check(CLI::IsMember({"paper"}));
+  eval->add_option("--suite", a->suite,
+                   "paper: every task, scale and condition of the paper (Figs. 9, 12, 13); loso: leave one subject "
+                   "out, training --kinds on the other subjects of --trials (default walking)")
+      ->check(CLI::IsMember({"paper", "loso"}));
   eval->add_option("--trials", a->trials, "split name (datasets_scripts/splits/NAME.txt) or file of test trials")
+      ->capture_default_str()
+      ->each([a](const std::string&) { a->trials_given = true; });
+  eval->add_option("--kinds", a->kinds, "loso: model kinds, comma-separated")->capture_default_str();
+  eval->add_option("--max-time", a->max_time, "loso: training time limit per model, seconds (0: none)")
+      ->check(CLI::NonNegativeNumber);
+  eval->add_option("--max-per-subject", a->max_per_subject, "loso: training trials per subject, at most")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   eval->add_option("--data", a->data, "data root (default: $JGPM_DATA, ./data/cmu, ../shared/data/cmu)");
   eval->add_option("--scale", a->scale, "stride scale s applied to each test cycle (eq. 5)")
