@@ -13,6 +13,7 @@
 #include "io/gait_dataset.h"
 #include "io/split.h"
 #include "io/text_reader.h"
+#include "prior/loso.h"
 #include "prior/model_file.h"
 #include "prior/model_report.h"
 #include "prior/validation.h"
@@ -487,6 +488,72 @@ TEST(JgpmCli, EvalAdaptsPosture) {
   const Result bad = Jgpm("eval --model " + pca.string() + " --task interpolation --adapt size" + data);
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("--adapt"), std::string::npos) << bad.err;
+}
+
+// --suite loso with PCA on three subjects: each fold's errors are those of a PCA the
+// library trains on the other subjects' trials, validated on the held-out one's; a second
+// run reads the fold models back and writes the same table; a model file of other trials
+// in their place is refused by name, and the table is left as it was.
+TEST(JgpmCli, EvalLeaveOneSubjectOut) {
+  test::TempDir dir;
+  const std::string data = " --data " + test::CmuRoot().string();
+  const fs::path trials = dir.Write("three.txt", "02_01\n05_01\n07_01\n07_02\n");
+  const fs::path out = dir.path() / "loso";
+  const std::string command = "eval --suite loso --kinds pca --adapt both --trials " + trials.string() + data +
+                              " --out " + out.string();
+  Result r = Jgpm(command);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string csv = ReadTextFile(out / "loso.csv", "csv");
+  EXPECT_EQ(Lines(csv), 1 + 3 * 2 + 2) << csv;
+  const GaitDataset dataset = PrepareGaitDataset(test::CmuRoot(), trials.string(), ReadSplit(trials), GaitCycleOptions{});
+  const std::vector<LosoFold> folds = LosoFolds(dataset, 9);
+  ASSERT_EQ(folds.size(), 3u);
+  std::istringstream rows(csv);
+  std::string row;
+  std::getline(rows, row);
+  for (const LosoFold& fold : folds) {
+    const auto model = TrainLosoModel(fold, ModelKind::kPca, 0, 1, {});
+    for (bool adapt : {false, true}) {
+      InferenceOptions inference;
+      inference.adapt_posture = adapt;
+      const ValidationResult expected = Validate(*model, LoadValidationTrials(fold.test, *model), ValidationCase{}, inference);
+      std::getline(rows, row);
+      const std::vector<std::string> cells = Cells(row);
+      ASSERT_EQ(cells.size(), 7u) << row;
+      EXPECT_EQ(cells[0], fold.subject);
+      EXPECT_EQ(cells[2], adapt ? "yes" : "no");
+      EXPECT_EQ(cells[3], std::to_string(fold.test.trials.size()));
+      EXPECT_NEAR(std::stod(cells[4]), expected.mean_error_mm, 1e-3) << row;
+    }
+  }
+  EXPECT_TRUE(fs::exists(out / "models" / "pca-without-07.json"));
+  const nlohmann::json j = nlohmann::json::parse(ReadTextFile(out / "loso.json", "json"));
+  EXPECT_EQ(j["results"].size(), 6u);
+  EXPECT_EQ(j["results"][5]["held_out_subject"], "07");
+
+  r = Jgpm(command);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("read from"), std::string::npos) << r.out;
+  auto errors = [](const std::string& table) {  // the table without its seconds column
+    std::istringstream lines(table);
+    std::string kept;
+    for (std::string line; std::getline(lines, line);) kept += line.substr(0, line.rfind(',')) + "\n";
+    return kept;
+  };
+  EXPECT_EQ(errors(ReadTextFile(out / "loso.csv", "csv")), errors(csv));
+
+  fs::copy_file(out / "models" / "pca-without-02.json", out / "models" / "pca-without-05.json",
+                fs::copy_options::overwrite_existing);
+  fs::remove(out / "loso.csv");
+  r = Jgpm(command);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("pca-without-05.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("other trials"), std::string::npos) << r.err;
+  EXPECT_EQ(Lines(r.err), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out / "loso.csv"));
+  r = Jgpm("eval --suite loso --kinds pca,banana --out " + out.string() + data);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("banana"), std::string::npos) << r.err;
 }
 
 TEST(JgpmCli, EvalBadInput) {
