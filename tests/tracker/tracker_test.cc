@@ -171,6 +171,22 @@ TEST(Tracker, TracksAWalkAndNotItsShuffledMasks) {
   EXPECT_GT(bad.errors->bodytrack14.absolute_mm, 300);
 }
 
+// The posture offset as a per-person state (--adapt posture, off by default: measured no
+// better on the suite) tracks the walk within the same bound, and does change the result.
+TEST(Tracker, TracksAWalkWithPostureAdaptation) {
+  const Fixture& f = Shared();
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  TrackJobOptions job = Job(f.clip, 2);
+  job.tracker.refinement.adapt_posture = true;
+  const TrackJobResult adapted = RunTrackJob(job);
+  ASSERT_TRUE(adapted.errors.has_value());
+  Print("posture:", adapted, truth);
+  EXPECT_LT(adapted.errors->bodytrack14.absolute_mm, kAutoBoundMm);
+  EXPECT_LT(RootError(adapted.run, truth), kRootBoundMm);
+  const TrackJobResult plain = RunTrackJob(Job(f.clip, 2));
+  EXPECT_NE(adapted.errors->bodytrack14.absolute_mm, plain.errors->bodytrack14.absolute_mm);
+}
+
 // Every likelihood evaluation is counted: without the refinement, a tracked frame costs
 // particles x layers and the two scores of the mirror test; the first frame weighs
 // start_particle_factor times the particles in its first layer, then the usual number in

@@ -28,7 +28,7 @@ struct TrackArguments {
   std::string cameras;
   std::string init = "auto";
   std::string space = "model";
-  std::string adapt = "posture";
+  std::string adapt = "none";
   std::string foreground;  // "" : a clip's masks, or mog2 for other sources
   std::string size;        // a live camera's WxH
   bool no_latent_prior = false;
@@ -157,7 +157,7 @@ struct BenchArguments {
   std::vector<std::string> baselines = {"joint-space", "no-latent-prior", "known-skeleton", "from-video"};
   bool no_budget = false;
   int threads = 0;
-  std::string adapt = "posture";
+  std::string adapt = "none";
   TrackBenchOptions bench;
 };
 
@@ -297,8 +297,8 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
   const char* adapt_help =
-      "posture: the person's posture offset is a state under the training subjects' posture prior; none: a running "
-      "mean of the refinement's deviations";
+      "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
+      "a state under the training subjects' posture prior (measured no better on the suite)";
   track->add_option("--adapt", a->adapt, adapt_help)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
