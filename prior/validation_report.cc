@@ -28,6 +28,28 @@ cv::Scalar ModelColour(int i) {  // BGR, distinguishable in print
   return kColours[i % 9];
 }
 
+// One colour per series: the palette in order, except that "X+posture" (a model with
+// posture adaptation, beside X itself) takes a light tint of X's colour, so that a suite of
+// 16 series still pairs each model with its adapted self.
+std::vector<cv::Scalar> SeriesColours(const std::vector<std::string>& names) {
+  const std::string suffix = "+posture";
+  std::vector<cv::Scalar> colours(names.size());
+  std::vector<int> base(names.size(), -1);
+  int next = 0;
+  for (size_t m = 0; m < names.size(); ++m) {
+    const std::string& n = names[m];
+    if (n.size() > suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      const auto it = std::find(names.begin(), names.end(), n.substr(0, n.size() - suffix.size()));
+      if (it != names.end()) base[m] = static_cast<int>(it - names.begin());
+    }
+    if (base[m] < 0) colours[m] = ModelColour(next++);
+  }
+  for (size_t m = 0; m < names.size(); ++m) {
+    if (base[m] >= 0) colours[m] = 0.45 * colours[base[m]] + 0.55 * cv::Scalar(255, 255, 255);
+  }
+  return colours;
+}
+
 void Text(cv::Mat& image, const std::string& text, cv::Point at, double scale = 0.45) {
   cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, {0, 0, 0}, 1, cv::LINE_AA);
 }
@@ -39,7 +61,8 @@ struct Panel {
   std::vector<std::vector<const ValidationResult*>> bars;   // [model][scale], may hold nulls
 };
 
-void DrawPanel(cv::Mat& image, const cv::Rect& area, const Panel& panel, double top_mm, bool whiskers) {
+void DrawPanel(cv::Mat& image, const cv::Rect& area, const Panel& panel, const std::vector<cv::Scalar>& colours,
+               double top_mm, bool whiskers) {
   const int left = area.x + 50, bottom = area.y + area.height - 30, height = area.height - 60;
   const int width = area.width - 60;
   Text(image, panel.title, {area.x + 50, area.y + 18}, 0.5);
@@ -64,7 +87,7 @@ void DrawPanel(cv::Mat& image, const cv::Rect& area, const Panel& panel, double 
       if (!r) continue;
       const int xa = static_cast<int>(x0 + m * bar_width), xb = static_cast<int>(x0 + (m + 1) * bar_width) - 1;
       const int y = bottom - static_cast<int>(height * std::min(r->mean_error_mm, top_mm) / top_mm);
-      cv::rectangle(image, {xa, y}, {std::max(xa, xb), bottom}, ModelColour(m), cv::FILLED);
+      cv::rectangle(image, {xa, y}, {std::max(xa, xb), bottom}, colours[m], cv::FILLED);
       if (whiskers && r->std_error_mm > 0) {
         const int xm = (xa + xb) / 2;
         const int ya = bottom - static_cast<int>(height * std::min(r->mean_error_mm + r->std_error_mm, top_mm) / top_mm);
@@ -87,6 +110,7 @@ cv::Mat Chart(const std::vector<Panel>& panels, const std::vector<std::string>& 
     }
   }
   top *= 1.08;
+  const std::vector<cv::Scalar> colours = SeriesColours(models);
   // At least two panels wide, so the title and a legend of four columns fit.
   const int panel_width = 520, panel_height = 380;
   const int width = panel_width * std::max<int>(2, static_cast<int>(panels.size()));
@@ -95,12 +119,12 @@ cv::Mat Chart(const std::vector<Panel>& panels, const std::vector<std::string>& 
   Text(image, title, {10, 22}, 0.6);
   for (size_t i = 0; i < panels.size(); ++i) {
     const int w = width / static_cast<int>(panels.size());
-    DrawPanel(image, cv::Rect(static_cast<int>(i) * w, 30, w, panel_height), panels[i], top, whiskers);
+    DrawPanel(image, cv::Rect(static_cast<int>(i) * w, 30, w, panel_height), panels[i], colours, top, whiskers);
   }
   for (size_t m = 0; m < models.size(); ++m) {
     const int column = static_cast<int>(m) % columns, row = static_cast<int>(m) / columns;
     const cv::Point at(20 + column * 260, panel_height + 45 + 22 * row);
-    cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(static_cast<int>(m)), cv::FILLED);
+    cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, colours[m], cv::FILLED);
     Text(image, models[m], {at.x + 20, at.y}, 0.45);
   }
   return image;
@@ -111,6 +135,9 @@ cv::Mat Chart(const std::vector<Panel>& panels, const std::vector<std::string>& 
 cv::Mat JointChart(const std::vector<ModelResults>& suite) {
   const std::vector<std::string>& joints = suite[0].results[0].joint_names;
   const int n = static_cast<int>(joints.size()), models = static_cast<int>(suite.size());
+  std::vector<std::string> names;
+  for (const ModelResults& r : suite) names.push_back(r.model);
+  const std::vector<cv::Scalar> colours = SeriesColours(names);
   std::vector<std::vector<double>> mm(models, std::vector<double>(n, 0.0));
   double top = 1;
   for (int m = 0; m < models; ++m) {
@@ -140,12 +167,12 @@ cv::Mat JointChart(const std::vector<ModelResults>& suite) {
     for (int m = 0; m < models; ++m) {
       const int length = static_cast<int>(plot * mm[m][j] / top);
       cv::rectangle(image, {left, y0 + m * bar}, {left + std::max(0, length - 1), y0 + (m + 1) * bar - 2},
-                    ModelColour(m), cv::FILLED);
+                    colours[m], cv::FILLED);
     }
   }
   for (int m = 0; m < models; ++m) {
     const cv::Point at(20 + (m % columns) * 260, axis + n * row + 30 + 22 * (m / columns));
-    cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, ModelColour(m), cv::FILLED);
+    cv::rectangle(image, {at.x, at.y - 10}, {at.x + 14, at.y + 2}, colours[m], cv::FILLED);
     Text(image, suite[m].model, {at.x + 20, at.y}, 0.45);
   }
   return image;
