@@ -54,17 +54,28 @@ bool TrainingOptions::Check(std::string* why) const {
 std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
                                           const ReferenceSkeleton& skeleton,
                                           const TrainingOptions& options) {
+  const ModelSpec spec = SpecFor(options.kind, static_cast<int>(dataset.channel_names.size()));
+  return TrainGaitModel(MakeTrainingSet(dataset, spec.layer_scales), dataset.split, skeleton, options);
+}
+
+std::unique_ptr<GaitModel> TrainGaitModel(TrainingSet training_set, const std::string& split,
+                                          const ReferenceSkeleton& skeleton, const TrainingOptions& options) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("training options", why);
   const LinearAlgebraThreadScope threads(options.threads);  // the caller's setting comes back
-  const ModelSpec spec = SpecFor(options.kind, static_cast<int>(dataset.channel_names.size()));
+  const ModelSpec spec = SpecFor(options.kind, training_set.NumChannels());
+  if (training_set.NumLayers() != static_cast<int>(spec.layer_scales.size())) {
+    ThrowInputError("training set", std::to_string(training_set.NumLayers()) + " layer(s); a " +
+                                        std::string(ModelKindName(options.kind)) + " model needs " +
+                                        std::to_string(spec.layer_scales.size()));
+  }
   GaitModelData data;
   data.kind = options.kind;
-  data.split = dataset.split;
+  data.split = split;
   data.seed = options.seed;
   data.terms = spec.terms;
   data.terms.topology_sigma2 = options.topology_sigma2;
-  data.set = MakeTrainingSet(dataset, spec.layer_scales);
+  data.set = std::move(training_set);
   data.skeleton_trial = skeleton.trial;
   data.skeleton_asf = skeleton.asf;
   const TrainingSet& set = data.set;

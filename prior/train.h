@@ -48,5 +48,9 @@ ReferenceSkeleton ChooseReferenceSkeleton(const GaitDataset& dataset, const std:
 std::unique_ptr<GaitModel> TrainGaitModel(const GaitDataset& dataset,
                                           const ReferenceSkeleton& skeleton,
                                           const TrainingOptions& options);
+// The same from a prepared training set (e.g. MakeSequenceSet's); `split` names its data.
+// InputError when its layer count is not the kind's.
+std::unique_ptr<GaitModel> TrainGaitModel(TrainingSet set, const std::string& split,
+                                          const ReferenceSkeleton& skeleton, const TrainingOptions& options);
 
 }  // namespace jgpm

@@ -37,11 +37,42 @@ TrainingSet MakeTrainingSet(const GaitDataset& dataset, const std::vector<double
     }
   }
   if (!set.y_deg.allFinite()) ThrowInputError("dataset " + dataset.split, "holds non-finite poses");
-  set.mean = set.y_deg.colwise().mean();
-  const Eigen::MatrixXd centred = set.y_deg.rowwise() - set.mean;
-  set.scale = (centred.colwise().squaredNorm() / n).array().sqrt().max(1e-3).matrix();
-  ComputeDerivedFields(&set);
+  Normalise(&set);
   return set;
+}
+
+TrainingSet MakeSequenceSet(const std::vector<std::string>& ids, const std::vector<Eigen::MatrixXd>& sequences,
+                            const std::vector<std::string>& channel_names, const std::vector<int>& channel_joints) {
+  if (sequences.empty() || sequences.size() != ids.size()) {
+    ThrowInputError("motion sequences", "expected one id per sequence and at least one sequence");
+  }
+  TrainingSet set;
+  set.channel_names = channel_names;
+  set.channel_joints = channel_joints;
+  set.layer_scales = {1.0};
+  set.gait_ids = ids;
+  set.poses_per_gait = static_cast<int>(sequences[0].rows());
+  const int d = static_cast<int>(channel_names.size());
+  if (set.poses_per_gait < 2) ThrowInputError("motion sequences", "need at least 2 poses each");
+  set.y_deg.resize(static_cast<Eigen::Index>(sequences.size()) * set.poses_per_gait, d);
+  for (size_t s = 0; s < sequences.size(); ++s) {
+    if (sequences[s].rows() != set.poses_per_gait || sequences[s].cols() != d) {
+      ThrowInputError("motion sequence " + ids[s], "has " + std::to_string(sequences[s].rows()) + " x " +
+                                                       std::to_string(sequences[s].cols()) + " poses; expected " +
+                                                       std::to_string(set.poses_per_gait) + " x " + std::to_string(d));
+    }
+    if (!sequences[s].allFinite()) ThrowInputError("motion sequence " + ids[s], "holds non-finite poses");
+    set.y_deg.middleRows(static_cast<Eigen::Index>(s) * set.poses_per_gait, set.poses_per_gait) = sequences[s];
+  }
+  Normalise(&set);
+  return set;
+}
+
+void Normalise(TrainingSet* set) {
+  set->mean = set->y_deg.colwise().mean();
+  const Eigen::MatrixXd centred = set->y_deg.rowwise() - set->mean;
+  set->scale = (centred.colwise().squaredNorm() / set->y_deg.rows()).array().sqrt().max(1e-3).matrix();
+  ComputeDerivedFields(set);
 }
 
 void ComputeDerivedFields(TrainingSet* set) {

@@ -48,6 +48,15 @@ struct TrainingSet {
 //   y'_{u,k} = mean_u(y_{.,k}) + s (y_{u,k} - mean_u(y_{.,k})).
 Eigen::MatrixXd ScaleGait(const Eigen::MatrixXd& cycle, double scale);
 
+// A training set of motion sequences of equal length (one "gait" each, one layer), such
+// as the two motions a transition joins. InputError for unequal or non-finite sequences.
+TrainingSet MakeSequenceSet(const std::vector<std::string>& ids, const std::vector<Eigen::MatrixXd>& sequences,
+                            const std::vector<std::string>& channel_names, const std::vector<int>& channel_joints);
+
+// Sets mean and scale from y_deg (each channel's mean and standard deviation, floored as
+// above), then the derived fields.
+void Normalise(TrainingSet* set);
+
 // Fills `points` and `y` from the counts, y_deg, mean and scale (what a model file stores).
 void ComputeDerivedFields(TrainingSet* set);
 
