@@ -104,26 +104,26 @@ Motion PosesToMotion(const GaitModel& model, const Eigen::MatrixXd& poses_deg, d
   return motion;
 }
 
-std::vector<std::filesystem::path> WriteSynthesis(const GaitModel& model, const Motion& motion,
-                                                  const std::filesystem::path& out, const std::filesystem::path& png) {
+std::vector<std::filesystem::path> WriteSynthesis(const Skeleton& skeleton, const std::string& asf_text,
+                                                  const Motion& motion, const std::filesystem::path& out,
+                                                  const std::filesystem::path& png) {
   const std::string extension = out.extension().string();
   OutputBatch batch;
   if (extension == ".amc") {
-    batch.Add(out, FormatAmc(motion, model.skeleton()));
+    batch.Add(out, FormatAmc(motion, skeleton));
     std::filesystem::path asf = out;
     asf.replace_extension(".asf");
-    batch.Add(asf, model.data().skeleton_asf);
+    batch.Add(asf, asf_text);
   } else if (extension == ".bvh") {
-    batch.Add(out, FormatBvh(AcclaimToBvh(model.skeleton(), motion)));
+    batch.Add(out, FormatBvh(AcclaimToBvh(skeleton, motion)));
   } else {
     ThrowInputError(out.string(), "expected a .amc or .bvh file name");
   }
-  if (!png.empty()) batch.Add(png, EncodePng(StickFigures(model, motion), png.string()));
+  if (!png.empty()) batch.Add(png, EncodePng(StickFigures(skeleton, motion), png.string()));
   return batch.Commit();
 }
 
-cv::Mat StickFigures(const GaitModel& model, const Motion& motion, int figures) {
-  const Skeleton& skeleton = model.skeleton();
+cv::Mat StickFigures(const Skeleton& skeleton, const Motion& motion, int figures) {
   const Kinematics kinematics(skeleton);
   figures = std::max(1, std::min(figures, motion.NumFrames()));
   const int cell = 150, height = 260;

@@ -55,13 +55,13 @@ Motion PosesToMotion(const GaitModel& model, const Eigen::MatrixXd& poses_deg, d
 
 // A strip of `figures` stick figures seen from the side (walking to the right), evenly
 // spaced over the motion.
-cv::Mat StickFigures(const GaitModel& model, const Motion& motion, int figures = 12);
+cv::Mat StickFigures(const Skeleton& skeleton, const Motion& motion, int figures = 12);
 
-// Writes OUT.amc with OUT.asf beside it (the reference skeleton), or OUT.bvh; the format
-// follows the extension; with `png`, also StickFigures there. All the files or none.
-// Returns the files written. InputError for another extension or a file not writable.
-std::vector<std::filesystem::path> WriteSynthesis(const GaitModel& model, const Motion& motion,
-                                                  const std::filesystem::path& out,
+// Writes OUT.amc with OUT.asf beside it (`asf_text`, the skeleton's file), or OUT.bvh; the
+// format follows the extension; with `png`, also StickFigures there. All the files or
+// none. Returns the files written. InputError for another extension or a file not writable.
+std::vector<std::filesystem::path> WriteSynthesis(const Skeleton& skeleton, const std::string& asf_text,
+                                                  const Motion& motion, const std::filesystem::path& out,
                                                   const std::filesystem::path& png = {});
 
 }  // namespace jgpm

@@ -69,7 +69,7 @@ TEST(Synthesis, WrittenMotionKeepsBoneLengthsAndAsfLimits) {
     const SynthesisResult result = Synthesise(Model(), path);
     const Motion motion = PosesToMotion(Model(), result.poses_deg, 30);
     const fs::path amc = dir.path() / (std::string(SynthesisPathName(path)) + ".amc");
-    ASSERT_EQ(WriteSynthesis(Model(), motion, amc).size(), 2u);
+    ASSERT_EQ(WriteSynthesis(Model().skeleton(), Model().data().skeleton_asf, motion, amc).size(), 2u);
     // Read back what an animation tool would read.
     const Skeleton skeleton = ReadAsf(fs::path(amc).replace_extension(".asf"));
     const Motion back = ReadAmc(amc, skeleton);
@@ -131,7 +131,7 @@ TEST(Synthesis, FeetAlternateAndOuterStridesAreLonger) {
 TEST(Synthesis, StickFiguresAndBvh) {
   test::TempDir dir;
   const Motion motion = PosesToMotion(Model(), Synthesise(Model(), SynthesisPath::kOuterSpiral).poses_deg, 30);
-  const std::vector<fs::path> written = WriteSynthesis(Model(), motion, dir.path() / "walk.bvh", dir.path() / "strip.png");
+  const std::vector<fs::path> written = WriteSynthesis(Model().skeleton(), Model().data().skeleton_asf, motion, dir.path() / "walk.bvh", dir.path() / "strip.png");
   ASSERT_EQ(written.size(), 2u);
   // 12 figures of 150 px side by side; each figure draws dark pixels (its bones).
   const cv::Mat strip = cv::imread((dir.path() / "strip.png").string(), cv::IMREAD_GRAYSCALE);
@@ -141,7 +141,7 @@ TEST(Synthesis, StickFiguresAndBvh) {
   }
   const Bvh bvh = ReadBvh(dir.path() / "walk.bvh");
   EXPECT_EQ(bvh.frames.rows(), 120);
-  ExpectInputError([&] { WriteSynthesis(Model(), motion, dir.path() / "walk.fbx"); }, {"walk.fbx", ".amc or .bvh"});
+  ExpectInputError([&] { WriteSynthesis(Model().skeleton(), Model().data().skeleton_asf, motion, dir.path() / "walk.fbx"); }, {"walk.fbx", ".amc or .bvh"});
 }
 
 // The motion and its picture appear together or not at all: a picture that cannot be
@@ -149,7 +149,7 @@ TEST(Synthesis, StickFiguresAndBvh) {
 TEST(Synthesis, AllFilesOrNone) {
   test::TempDir dir;
   const Motion motion = PosesToMotion(Model(), Synthesise(Model(), SynthesisPath::kLine).poses_deg, 30);
-  ExpectInputError([&] { WriteSynthesis(Model(), motion, dir.path() / "walk.amc", dir.path() / "no" / "strip.png"); },
+  ExpectInputError([&] { WriteSynthesis(Model().skeleton(), Model().data().skeleton_asf, motion, dir.path() / "walk.amc", dir.path() / "no" / "strip.png"); },
                    {"strip.png", "does not exist"});
   EXPECT_TRUE(fs::is_empty(dir.path()));
 }

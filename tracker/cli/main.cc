@@ -11,6 +11,7 @@
 #include "tracker/cli/prior_commands.h"
 #include "tracker/cli/render_commands.h"
 #include "tracker/cli/track_commands.h"
+#include "tracker/cli/transition_commands.h"
 #include "tracker/cli/validation_commands.h"
 
 int main(int argc, char** argv) {
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   jgpm::cli::AddValidationCommands(app);
   jgpm::cli::AddRenderCommands(app);
   jgpm::cli::AddTrackCommands(app);
+  jgpm::cli::AddTransitionCommands(app);
   jgpm::cli::AddCalibrationCommands(app);
   jgpm::cli::AddDeviceCommands(app);
   try {

@@ -117,7 +117,9 @@ void RunSynth(const SynthArguments& a) {
   const auto model = ReadModelFile(a.model);
   const SynthesisResult result = Synthesise(*model, path, a.options);
   const Motion motion = PosesToMotion(*model, result.poses_deg, a.options.frames_per_second);
-  for (const auto& file : WriteSynthesis(*model, motion, a.out, a.png)) std::printf("wrote %s\n", file.string().c_str());
+  for (const auto& file : WriteSynthesis(model->skeleton(), model->data().skeleton_asf, motion, a.out, a.png)) {
+    std::printf("wrote %s\n", file.string().c_str());
+  }
 }
 
 }  // namespace

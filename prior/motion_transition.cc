@@ -1,0 +1,137 @@
+#include "prior/motion_transition.h"
+
+#include <chrono>
+#include <cmath>
+#include <span>
+
+#include "io/error.h"
+#include "io/gait_pose.h"
+#include "io/rotation.h"
+#include "io/slerp_transition.h"
+
+namespace jgpm {
+namespace {
+
+// Every k-th frame, k = rate / fps; A's selection ends on its last frame, B's starts on
+// its first.
+RowMatrixXd Resample(const MotionInput& in, double fps, bool end_aligned) {
+  const double ratio = in.motion.frames_per_second / fps;
+  const int k = static_cast<int>(std::lround(ratio));
+  if (k < 1 || std::abs(ratio - k) > 1e-6) {
+    ThrowInputError(in.source, "is at " + std::to_string(in.motion.frames_per_second) +
+                                   " frames/s, not a whole multiple of " + std::to_string(fps));
+  }
+  const int n = in.motion.NumFrames(), count = (n + k - 1) / k;
+  if (count < 3) {
+    ThrowInputError(in.source, "has " + std::to_string(n) + " frames, " + std::to_string(count) + " at " +
+                                   std::to_string(static_cast<int>(fps)) + " frames/s; a transition needs at least 3");
+  }
+  if (!in.motion.values.allFinite()) ThrowInputError(in.source, "holds a non-finite value");
+  RowMatrixXd out(count, in.motion.values.cols());
+  const int offset = end_aligned ? (n - 1) - (count - 1) * k : 0;
+  for (int i = 0; i < count; ++i) out.row(i) = in.motion.values.row(offset + i * k);
+  return out;
+}
+
+// B's frames on A's skeleton: each of A's channels from B's channel of the same name.
+RowMatrixXd OnSkeleton(const RowMatrixXd& frames, const Skeleton& from, const Skeleton& to, const std::string& source) {
+  const std::vector<std::string> from_names = from.ChannelNames(), to_names = to.ChannelNames();
+  if (from_names == to_names) return frames;
+  RowMatrixXd out(frames.rows(), static_cast<Eigen::Index>(to_names.size()));
+  for (size_t c = 0; c < to_names.size(); ++c) {
+    const auto it = std::find(from_names.begin(), from_names.end(), to_names[c]);
+    if (it == from_names.end()) {
+      ThrowInputError(source, "its skeleton has no channel " + to_names[c] + ", which motion A's has");
+    }
+    out.col(static_cast<Eigen::Index>(c)) = frames.col(it - from_names.begin());
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string_view TransitionMethodName(TransitionMethod method) {
+  switch (method) {
+    case TransitionMethod::kLsopa: return "lsopa";
+    case TransitionMethod::kLinear: return "li";
+    case TransitionMethod::kRandom: return "ri";
+    case TransitionMethod::kSlerp: return "slerp";
+  }
+  return "?";
+}
+
+bool ParseTransitionMethod(std::string_view name, TransitionMethod* method) {
+  for (TransitionMethod m : {TransitionMethod::kLsopa, TransitionMethod::kLinear, TransitionMethod::kRandom,
+                             TransitionMethod::kSlerp}) {
+    if (name == TransitionMethodName(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput& b,
+                                         const MotionTransitionOptions& options) {
+  std::string why;
+  if (!options.transition.path.Check(&why)) ThrowInputError("transition options", why);
+  if (!(options.frames_per_second > 0) || options.context < 3) {
+    ThrowInputError("transition options", "frames_per_second must be > 0 and context >= 3");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const RowMatrixXd frames_a = Resample(a, options.frames_per_second, true);
+  const RowMatrixXd frames_b =
+      OnSkeleton(Resample(b, options.frames_per_second, false), b.skeleton, a.skeleton, b.source);
+  const int n = options.transition.path.frames;
+  const Eigen::RowVectorXd last_a = frames_a.row(frames_a.rows() - 1), first_b = frames_b.row(0);
+
+  MotionTransitionResult result;
+  result.frames = n;
+  result.first = static_cast<int>(frames_a.rows());
+  result.other_skeleton = a.asf_text != b.asf_text;
+  RowMatrixXd transition(n, frames_a.cols());
+  if (options.method == TransitionMethod::kSlerp) {
+    transition = SlerpTransition(a.skeleton, last_a, first_b, n);
+  } else {
+    const GaitPoseLayout layout(a.skeleton, a.source);
+    const int t = static_cast<int>(std::min<Eigen::Index>({frames_a.rows(), frames_b.rows(), options.context}));
+    result.context = t;
+    const double heading = HeadingOf(layout.RootRotation(last_a.data()));
+    // A's last t and B's first t frames as gait poses, unwrapped along A then B.
+    Eigen::MatrixXd poses(2 * t, layout.NumChannels());
+    for (int i = 0; i < 2 * t; ++i) {
+      const Eigen::RowVectorXd frame = i < t ? frames_a.row(frames_a.rows() - t + i) : frames_b.row(i - t);
+      Eigen::RowVectorXd pose(layout.NumChannels());
+      layout.FromFrame(frame.data(), heading, pose.data());
+      poses.row(i) = pose;
+    }
+    for (Eigen::Index c = 0; c < poses.cols(); ++c) {
+      Eigen::VectorXd column = poses.col(c);
+      UnwrapDegrees(std::span<double>(column.data(), column.size()));
+      poses.col(c) = column;
+    }
+    TransitionOptions transition_options = options.transition;
+    transition_options.method = options.method == TransitionMethod::kLsopa   ? LatentPathMethod::kLsopa
+                                : options.method == TransitionMethod::kLinear ? LatentPathMethod::kLinear
+                                                                              : LatentPathMethod::kRandom;
+    const Transition generated =
+        MakeTransition(poses.topRows(t), poses.bottomRows(t), {a.source, a.asf_text}, transition_options);
+    Eigen::RowVectorXd frame(frames_a.cols());
+    for (int i = 0; i < n; ++i) {
+      // What the model does not carry, linearly; then the generated gait channels.
+      const double s = static_cast<double>(i + 1) / (n + 1);
+      transition.row(i) = (1 - s) * last_a + s * first_b;
+      const Eigen::RowVectorXd pose = generated.poses_deg.row(i);
+      layout.ToFrame(pose.data(), heading, Eigen::Vector3d::Zero(), frame.data());
+      for (int c : layout.skeleton_channels()) transition(i, c) = frame(c);
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  result.motion.frames_per_second = options.frames_per_second;
+  result.motion.values.resize(frames_a.rows() + n + frames_b.rows(), frames_a.cols());
+  result.motion.values << frames_a, transition, frames_b;
+  return result;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,62 @@
+// A transition between two recorded motions, as animators use it (`jgpm transition`,
+// issue #16): motion A's end and motion B's start, resampled to 30 fps, joined by N
+// generated frames, written as one motion on A's skeleton.
+//
+// - Both motions are taken every k-th frame (k = their rate / 30, which must be a whole
+//   number; CMU's 120 fps gives 4), A ending on its last frame, B starting on its first.
+// - B on A's skeleton: B's channels are matched to A's by name ("lfemur.rx"); a channel A
+//   has and B lacks is refused. Different subjects keep their own angles on A's bones
+//   (the summary says so).
+// - LSOPA, LI and RI (prior/transition.h) learn one GPDM on the last T frames of A and the
+//   first T of B (T = the shorter of the two, at most `context`), as gait poses
+//   (io/gait_pose.h) with one heading taken out of both (A's last frame's), each channel
+//   unwrapped along A then B; the generated poses go back to frames with that heading.
+//   SLERP (io/slerp_transition.h) works on the frames directly.
+// - What the gait model does not carry is interpolated linearly between A's last frame and
+//   B's first, for every method: the root's translation (the GP generates angles, not
+//   travel) and the channels outside the 18 gait joints (clavicles, hands, fingers, toes).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "io/motion.h"
+#include "io/skeleton.h"
+#include "prior/transition.h"
+
+namespace jgpm {
+
+enum class TransitionMethod { kLsopa, kLinear, kRandom, kSlerp };
+std::string_view TransitionMethodName(TransitionMethod method);  // "lsopa", "li", "ri", "slerp"
+bool ParseTransitionMethod(std::string_view name, TransitionMethod* method);
+
+struct MotionTransitionOptions {
+  TransitionMethod method = TransitionMethod::kLsopa;
+  TransitionOptions transition;     // N, l, theta, RI's seed, the GPDM's iterations
+  double frames_per_second = 30;
+  int context = 45;                 // frames of A and of B the GPDM learns, at most
+};
+
+struct MotionInput {
+  Skeleton skeleton;
+  std::string asf_text;  // for the reference skeleton of the GPDM (A's)
+  Motion motion;         // the frames to use (a range already cut)
+  std::string source;    // for messages, e.g. "07_01.amc:100-400"
+};
+
+struct MotionTransitionResult {
+  Motion motion;            // A, the transition, B, at frames_per_second, A's skeleton
+  int first = 0;            // first transition frame in `motion`
+  int frames = 0;           // N
+  int context = 0;          // T, frames of A and of B the GPDM learnt (0 for SLERP)
+  bool other_skeleton = false;  // B's skeleton was not A's
+  double seconds = 0;       // generating the transition, GPDM training included
+};
+
+// InputError naming the motion for a rate that is not a multiple of frames_per_second,
+// fewer than 3 frames after resampling, a channel of A that B lacks, non-finite values,
+// or bad options.
+MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput& b,
+                                         const MotionTransitionOptions& options);
+
+}  // namespace jgpm

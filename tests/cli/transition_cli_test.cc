@@ -1,0 +1,101 @@
+// `jgpm transition` end to end on a real trial (131_05: a start, a duck under something,
+// a stop): A and B are the trial's own frames every 4th (120 -> 30 fps), read back from
+// the written AMC exactly; the transition between them has N frames, SLERP's ends meet A
+// and B; LSOPA's joints lie between A's end and B's start; every bad request is refused
+// on one line with nothing written.
+#include <cstdio>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "io/amc.h"
+#include "io/asf.h"
+#include "io/kinematics.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Trial() { return (test::CmuRoot() / "subjects/131/131_05.amc").string(); }
+Skeleton Skeleton131() { return ReadAsf(test::CmuRoot() / "subjects/131/131.asf"); }
+
+int Lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+TEST(TransitionCli, JoinsTwoRangesOfATrial) {
+  const test::TempDir dir;
+  const Skeleton skeleton = Skeleton131();
+  const Motion trial = ReadAmc(Trial(), skeleton);
+  const Kinematics kinematics(skeleton);
+  for (const char* method : {"lsopa", "li", "ri", "slerp"}) {
+    const fs::path out = dir.path() / (std::string(method) + ".amc");
+    const test::CommandResult r = test::RunJgpm("transition --from " + Trial() + ":500-740 --to " + Trial() +
+                                                ":804-1000 --frames 15 --method " + method + " --out " +
+                                                out.string() + " --png " + (dir.path() / "strip.png").string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("A 61, transition 15 (from frame 61), B 50"), std::string::npos) << r.out;
+    const Motion m = ReadAmc(out, ReadAsf(dir.path() / (std::string(method) + ".asf")));
+    ASSERT_EQ(m.NumFrames(), 61 + 15 + 50);
+    // A: frames 500 + 4k ending on 740; B: 804 + 4k (file numbers count from 1).
+    for (int k = 0; k < 61; ++k) {
+      EXPECT_LT((m.values.row(k) - trial.values.row(500 - 1 + 4 * k)).cwiseAbs().maxCoeff(), 1e-5) << k;
+    }
+    for (int k = 0; k < 50; ++k) {
+      EXPECT_LT((m.values.row(76 + k) - trial.values.row(804 - 1 + 4 * k)).cwiseAbs().maxCoeff(), 1e-5) << k;
+    }
+    // The transition's root moves from A's last root to B's first, evenly.
+    const Eigen::Vector3d start = kinematics.Compute(m.Frame(60)).col(0), end = kinematics.Compute(m.Frame(76)).col(0);
+    for (int i = 1; i <= 15; ++i) {
+      const Eigen::Vector3d root = kinematics.Compute(m.Frame(60 + i)).col(0);
+      EXPECT_LT((root - (start + (end - start) * i / 16.0)).norm(), 1e-3) << method << " frame " << i;
+    }
+    // Every transition joint within the box of A's end and B's start poses, grown by 0.5 m:
+    // nothing flies off.
+    const Eigen::Matrix3Xd a = kinematics.Compute(m.Frame(60)), b = kinematics.Compute(m.Frame(76));
+    const Eigen::Vector3d lo = a.rowwise().minCoeff().cwiseMin(b.rowwise().minCoeff()).array() - 500;
+    const Eigen::Vector3d hi = a.rowwise().maxCoeff().cwiseMax(b.rowwise().maxCoeff()).array() + 500;
+    for (int i = 1; i <= 15; ++i) {
+      const Eigen::Matrix3Xd p = kinematics.Compute(m.Frame(60 + i));
+      EXPECT_TRUE(((p.colwise() - lo).array() >= 0).all() && ((p.colwise() - hi).array() <= 0).all())
+          << method << " frame " << i;
+    }
+  }
+  EXPECT_TRUE(fs::exists(dir.path() / "strip.png"));
+}
+
+TEST(TransitionCli, RefusesBadRequestsOnOneLine) {
+  const test::TempDir dir;
+  const fs::path out = dir.path() / "t.amc";
+  const std::string small = dir.Write("small.asf", test::SmallAsfText()).string();
+  // Motion B on another skeleton, without A's bones: b.amc with b.asf beside it.
+  dir.Write("b.asf", test::SmallAsfText());
+  std::string frames = ":FULLY-SPECIFIED\n:DEGREES\n";
+  for (int f = 1; f <= 40; ++f) {
+    frames += std::to_string(f) + "\nroot 0 0 0 0 0 0\nthigh 0 0\nshin 0\nspine 0 0 0\n";
+  }
+  const std::string other = dir.Write("b.amc", frames).string();
+  const std::string cases[][2] = {
+      {"--from " + Trial() + ":740-500 --to " + Trial(), "not within"},
+      {"--from " + Trial() + ":1-99999 --to " + Trial(), "not within"},
+      {"--from " + Trial() + ":500-505 --to " + Trial(), "at least 3"},
+      {"--from " + Trial() + " --to " + Trial() + " --method spline", "lsopa, li, ri or slerp"},
+      {"--from " + Trial() + " --to " + (dir.path() / "none.amc").string(), "none.amc"},
+      {"--from " + Trial() + " --to " + Trial() + " --asf " + small, "not in the ASF skeleton"},
+      {"--from " + Trial() + " --to " + other, "its skeleton has no channel"},
+  };
+  for (const auto& [arguments, phrase] : cases) {
+    const test::CommandResult r = test::RunJgpm("transition " + arguments + " --out " + out.string());
+    EXPECT_NE(r.status, 0) << arguments;
+    EXPECT_EQ(Lines(r.err), 1) << arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(phrase), std::string::npos) << arguments << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(out)) << arguments;
+  }
+  const test::CommandResult bad_out =
+      test::RunJgpm("transition --from " + Trial() + " --to " + Trial() + " --out " + (dir.path() / "t.fbx").string());
+  EXPECT_NE(bad_out.status, 0);
+  EXPECT_NE(bad_out.err.find(".amc or .bvh"), std::string::npos) << bad_out.err;
+}
+
+}  // namespace
+}  // namespace jgpm
