@@ -4,13 +4,18 @@
 // and B; LSOPA's joints lie between A's end and B's start; every bad request is refused
 // on one line with nothing written.
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
 #include "io/amc.h"
 #include "io/asf.h"
 #include "io/kinematics.h"
+#include "io/transition_event.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -95,6 +100,50 @@ TEST(TransitionCli, RefusesBadRequestsOnOneLine) {
       test::RunJgpm("transition --from " + Trial() + " --to " + Trial() + " --out " + (dir.path() / "t.fbx").string());
   EXPECT_NE(bad_out.status, 0);
   EXPECT_NE(bad_out.err.find(".amc or .bvh"), std::string::npos) << bad_out.err;
+}
+
+// The suite on one event: its frame is the rule's (the oracle: FindTransitionFrame on the
+// trial), every shift x N x method that fits in the trial has a row with finite measures,
+// and the event's strip is written; a malformed list is refused on one line.
+TEST(TransitionCli, SuiteMeasuresEveryCaseOfAnEvent) {
+  const test::TempDir dir;
+  const std::string events = dir.Write("events.txt", "# one event\n131_05 duck\n").string();
+  const fs::path out = dir.path() / "out";
+  const test::CommandResult r =
+      test::RunJgpm("eval --suite transitions --events " + events + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Skeleton skeleton = Skeleton131();
+  const Motion trial = ReadAmc(Trial(), skeleton);
+  const int expected = FindTransitionFrame(skeleton, trial, TransitionKind::kDuck, {}, "131_05") + trial.first_frame_number;
+  std::ifstream csv(out / "transitions.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("trial,kind,tune,event_frame,shift,N,method,eq23_mm,", 0), 0u) << line;
+  std::map<std::string, int> methods;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream split(line);
+    for (std::string cell; std::getline(split, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 20u) << line;
+    EXPECT_EQ(std::stoi(cells[3]), expected) << line;
+    ++methods[cells[6]];
+    for (size_t c = 7; c < cells.size(); ++c) EXPECT_TRUE(std::isfinite(std::stod(cells[c]))) << line;
+    ++rows;
+  }
+  // 3 shifts x 3 N, less the cases outside the trial, each with the 4 methods.
+  const int skipped = std::stoi(r.out.substr(r.out.find(" rows, ") + 7));
+  EXPECT_EQ(rows, (9 - skipped) * 4) << r.out;
+  EXPECT_EQ(methods.size(), 4u);
+  EXPECT_TRUE(fs::exists(out / "strips" / "131_05-duck.png"));
+
+  const std::string bad = dir.Write("bad.txt", "131_05 hop\n").string();
+  const test::CommandResult refused =
+      test::RunJgpm("eval --suite transitions --events " + bad + " --out " + (dir.path() / "out2").string());
+  EXPECT_NE(refused.status, 0);
+  EXPECT_EQ(Lines(refused.err), 1) << refused.err;
+  EXPECT_NE(refused.err.find("bad.txt:1"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "out2" / "transitions.csv"));
 }
 
 }  // namespace

@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <thread>
+
+#include <opencv2/imgproc.hpp>
 
 #include "io/data_root.h"
 #include "io/error.h"
@@ -14,7 +17,11 @@
 #include "io/split.h"
 #include "io/json_file.h"
 #include "io/output_batch.h"
+#include "io/transition_event.h"
 #include "prior/loso.h"
+#include "prior/png_file.h"
+#include "prior/synthesis.h"
+#include "prior/transition_suite.h"
 #include "prior/model_file.h"
 #include "prior/validation.h"
 #include "prior/validation_report.h"
@@ -41,6 +48,7 @@ struct EvalArguments {
   bool trials_given = false;
   std::string json;
   std::string out;
+  std::string events;
 };
 
 std::vector<bool> AdaptModes(const std::string& adapt) {  // none, posture, both
@@ -138,8 +146,64 @@ void RunLoso(const EvalArguments& a) {
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
+// `jgpm eval --suite transitions`: every event x shift x N x method of the event list;
+// OUT/transitions.csv, a summary per kind, N and method, and a strip per event (the truth
+// over each method, at shift 0 and N = 15) in OUT/strips.
+void RunTransitions(const EvalArguments& a) {
+  if (!a.models.empty() || !a.task.empty()) ThrowInputError("--suite transitions", "takes no --model or --task");
+  if (a.out.empty()) ThrowInputError("--suite transitions", "needs --out DIR for the CSV and the strips");
+  const std::filesystem::path events_path =
+      a.events.empty() ? std::filesystem::path(JGPM_SPLITS_DIR).parent_path() / "transitions.txt"
+                       : std::filesystem::path(a.events);
+  const std::vector<TransitionEvent> events = ReadTransitionEvents(events_path);
+  const std::filesystem::path root = ResolveDataRoot(a.data.empty() ? std::nullopt : std::optional(a.data));
+  const std::filesystem::path out(a.out);
+  if (std::filesystem::exists(out / "transitions.csv")) {
+    ThrowInputError((out / "transitions.csv").string(), "exists; give another --out");
+  }
+  std::filesystem::create_directories(out / "strips");
+  ProgressLine line("transitions");
+  const TransitionSuiteResult result = RunTransitionSuite(
+      events, root, TransitionSuiteOptions{},
+      [&](int done, int total, const std::string& label) { line.Update(done, total, "cases", label); });
+  line.Finish();
+  OutputBatch batch;
+  batch.Add(out / "transitions.csv", TransitionSuiteCsv(result));
+  for (const TransitionStrip& s : result.strips) {
+    std::vector<cv::Mat> rows;
+    for (const auto& [name, motion] : s.motions) {
+      cv::Mat row = StickFigures(s.skeleton, motion, std::min(12, motion.NumFrames()));
+      cv::putText(row, name, {8, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.6, {0, 0, 0}, 1, cv::LINE_AA);
+      rows.push_back(row);
+    }
+    cv::Mat strip;
+    cv::vconcat(rows, strip);
+    const std::filesystem::path png = out / "strips" / (s.trial + "-" + TransitionKindName(s.kind) + ".png");
+    batch.Add(png, EncodePng(strip, png.string()));
+  }
+  for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
+  // Summary: mean eq. 23 per kind, N and method over events and shifts (tuning events apart).
+  for (const bool tune : {true, false}) {
+    std::map<std::string, std::pair<double, int>> mean;
+    for (const TransitionSuiteRow& r : result.rows) {
+      if (r.tune != tune) continue;
+      char key[96];
+      std::snprintf(key, sizeof key, "%-6s N=%-3d %-6s", TransitionKindName(r.kind), r.frames,
+                    std::string(TransitionMethodName(r.method)).c_str());
+      mean[key].first += r.measures.eq23_root_aligned_mean_mm;
+      mean[key].second += 1;
+    }
+    if (mean.empty()) continue;
+    std::printf("%s events, eq. 23 (mm, root placed as in the truth), mean over events and shifts:\n",
+                tune ? "tuning" : "reported");
+    for (const auto& [key, v] : mean) std::printf("  %s %8.1f  (%d cases)\n", key.c_str(), v.first / v.second, v.second);
+  }
+  std::printf("%zu rows, %d case(s) skipped (not within their trial)\n", result.rows.size(), result.skipped);
+}
+
 void RunEval(const EvalArguments& a) {
   if (a.suite == "loso") return RunLoso(a);
+  if (a.suite == "transitions") return RunTransitions(a);
   if (a.models.empty()) ThrowInputError("--model", "give at least one model file");
   std::vector<ValidationCase> cases;
   if (!a.suite.empty()) {
@@ -238,8 +302,9 @@ void AddValidationCommands(CLI::App& app) {
   eval->add_option("--task", a->task, "one task")->check(CLI::IsMember({"interpolation", "reconstruction", "filtering"}));
   eval->add_option("--suite", a->suite,
                    "paper: every task, scale and condition of the paper (Figs. 9, 12, 13); loso: leave one subject "
-                   "out, training --kinds on the other subjects of --trials (default walking)")
-      ->check(CLI::IsMember({"paper", "loso"}));
+                   "out, training --kinds on the other subjects of --trials (default walking); transitions: LSOPA and its "
+                   "baselines on real transitions (--events)")
+      ->check(CLI::IsMember({"paper", "loso", "transitions"}));
   eval->add_option("--trials", a->trials, "split name (datasets_scripts/splits/NAME.txt) or file of test trials")
       ->capture_default_str()
       ->each([a](const std::string&) { a->trials_given = true; });
@@ -266,6 +331,7 @@ void AddValidationCommands(CLI::App& app) {
                    "prior has not seen); both: each model without and with it")
       ->check(CLI::IsMember({"none", "posture", "both"}))
       ->capture_default_str();
+  eval->add_option("--events", a->events, "transitions: the event list (default datasets_scripts/transitions.txt)");
   eval->add_option("--json", a->json, "write mean_error_mm and per-trial errors here");
   eval->add_option("--out", a->out, "folder for the CSV and the PNG charts");
   eval->callback([a] { RunEval(*a); });
