@@ -8,6 +8,7 @@
 #include "io/gait_pose.h"
 #include "io/rotation.h"
 #include "io/slerp_transition.h"
+#include "io/text_reader.h"
 
 namespace jgpm {
 namespace {
@@ -18,13 +19,13 @@ RowMatrixXd Resample(const MotionInput& in, double fps, bool end_aligned) {
   const double ratio = in.motion.frames_per_second / fps;
   const int k = static_cast<int>(std::lround(ratio));
   if (k < 1 || std::abs(ratio - k) > 1e-6) {
-    ThrowInputError(in.source, "is at " + std::to_string(in.motion.frames_per_second) +
-                                   " frames/s, not a whole multiple of " + std::to_string(fps));
+    ThrowInputError(in.source, "is at " + FormatShortest(in.motion.frames_per_second) +
+                                   " frames/s, not a whole multiple of " + FormatShortest(fps));
   }
   const int n = in.motion.NumFrames(), count = (n + k - 1) / k;
   if (count < 3) {
     ThrowInputError(in.source, "has " + std::to_string(n) + " frames, " + std::to_string(count) + " at " +
-                                   std::to_string(static_cast<int>(fps)) + " frames/s; a transition needs at least 3");
+                                   FormatShortest(fps) + " frames/s; a transition needs at least 3");
   }
   if (!in.motion.values.allFinite()) ThrowInputError(in.source, "holds a non-finite value");
   RowMatrixXd out(count, in.motion.values.cols());
