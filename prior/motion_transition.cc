@@ -97,13 +97,18 @@ MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput
     const GaitPoseLayout layout(a.skeleton, a.source);
     const int t = static_cast<int>(std::min<Eigen::Index>({frames_a.rows(), frames_b.rows(), options.context}));
     result.context = t;
-    const double heading = HeadingOf(layout.RootRotation(last_a.data()));
+    // Headings: A's last frame's is taken out of A, B's first frame's out of B, so that both
+    // are seen facing +z (a turn between them would otherwise put B's root angles on
+    // another Euler branch, and the path would tumble the body); the transition turns
+    // from one to the other evenly, as the root travels.
+    const double heading_a = HeadingOf(layout.RootRotation(last_a.data()));
+    const double turn = WrapDegrees(HeadingOf(layout.RootRotation(first_b.data())) - heading_a);
     // A's last t and B's first t frames as gait poses, unwrapped along A then B.
     Eigen::MatrixXd poses(2 * t, layout.NumChannels());
     for (int i = 0; i < 2 * t; ++i) {
       const Eigen::RowVectorXd frame = i < t ? frames_a.row(frames_a.rows() - t + i) : frames_b.row(i - t);
       Eigen::RowVectorXd pose(layout.NumChannels());
-      layout.FromFrame(frame.data(), heading, pose.data());
+      layout.FromFrame(frame.data(), i < t ? heading_a : heading_a + turn, pose.data());
       poses.row(i) = pose;
     }
     for (Eigen::Index c = 0; c < poses.cols(); ++c) {
@@ -123,7 +128,7 @@ MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput
       const double s = static_cast<double>(i + 1) / (n + 1);
       transition.row(i) = (1 - s) * last_a + s * first_b;
       const Eigen::RowVectorXd pose = generated.poses_deg.row(i);
-      layout.ToFrame(pose.data(), heading, Eigen::Vector3d::Zero(), frame.data());
+      layout.ToFrame(pose.data(), heading_a + s * turn, Eigen::Vector3d::Zero(), frame.data());
       for (int c : layout.skeleton_channels()) transition(i, c) = frame(c);
     }
   }

@@ -9,12 +9,14 @@
 //   (the summary says so).
 // - LSOPA, LI and RI (prior/transition.h) learn one GPDM on the last T frames of A and the
 //   first T of B (T = the shorter of the two, at most `context`), as gait poses
-//   (io/gait_pose.h) with one heading taken out of both (A's last frame's), each channel
-//   unwrapped along A then B; the generated poses go back to frames with that heading.
+//   (io/gait_pose.h): A's last heading taken out of A, B's first out of B (the GPDM models
+//   the body, not where it faces), each channel unwrapped along A then B; the generated
+//   poses go back to frames turning evenly from the one heading to the other.
 //   SLERP (io/slerp_transition.h) works on the frames directly.
 // - What the gait model does not carry is interpolated linearly between A's last frame and
-//   B's first, for every method: the root's translation (the GP generates angles, not
-//   travel) and the channels outside the 18 gait joints (clavicles, hands, fingers, toes).
+//   B's first, for every method: the root's translation and heading (the GP generates the
+//   body's angles, not travel or turning) and the channels outside the 18 gait joints
+//   (clavicles, hands, fingers, toes).
 #pragma once
 
 #include <string>

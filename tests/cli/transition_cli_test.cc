@@ -4,6 +4,7 @@
 // and B; LSOPA's joints lie between A's end and B's start; every bad request is refused
 // on one line with nothing written.
 #include <cstdio>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -67,6 +68,32 @@ TEST(TransitionCli, JoinsTwoRangesOfATrial) {
     }
   }
   EXPECT_TRUE(fs::exists(dir.path() / "strip.png"));
+}
+
+// 131_09 turns by about 100 degrees between A's end and B's start. The latent paths must
+// turn the body, not tumble it: the root's tilt from upright stays within that of the two
+// end frames plus 20 degrees (before the per-motion headings it reached about 90).
+TEST(TransitionCli, TurnsWithoutTumbling) {
+  const test::TempDir dir;
+  const std::string trial = (test::CmuRoot() / "subjects/131/131_09.amc").string();
+  const Skeleton skeleton = Skeleton131();
+  const Kinematics kinematics(skeleton);
+  for (const char* method : {"lsopa", "li"}) {
+    const fs::path out = dir.path() / (std::string(method) + ".amc");
+    const test::CommandResult r = test::RunJgpm("transition --from " + trial + ":1150-1334 --to " + trial +
+                                                ":1398-1578 --frames 15 --method " + method + " --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Motion m = ReadAmc(out, skeleton);
+    auto tilt_deg = [&](int frame) {
+      Eigen::Matrix3Xd joints;
+      std::vector<Eigen::Matrix3d> rotations;
+      kinematics.Compute(m.Frame(frame), &joints, &rotations);
+      return std::acos(std::clamp((rotations[0] * Eigen::Vector3d::UnitY()).y(), -1.0, 1.0)) * 180 / 3.14159265358979;
+    };
+    const int first = 47;  // A: frames 1150-1334 every 4th
+    const double ends = std::max(tilt_deg(first - 1), tilt_deg(first + 15));
+    for (int i = 0; i < 15; ++i) EXPECT_LT(tilt_deg(first + i), ends + 20) << method << " frame " << i;
+  }
 }
 
 TEST(TransitionCli, RefusesBadRequestsOnOneLine) {
