@@ -137,7 +137,8 @@ TEST(TransitionCli, SuiteMeasuresEveryCaseOfAnEvent) {
   const std::string events = dir.Write("events.txt", "# one event\n131_05 duck\n").string();
   const fs::path out = dir.path() / "out";
   const test::CommandResult r =
-      test::RunJgpm("eval --suite transitions --events " + events + " --out " + out.string());
+      test::RunJgpm("eval --suite transitions --events " + events + " --data " + test::CmuRoot().string() +
+                    " --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const Skeleton skeleton = Skeleton131();
   const Motion trial = ReadAmc(Trial(), skeleton);
