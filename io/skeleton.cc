@@ -33,6 +33,14 @@ int Skeleton::FindBone(std::string_view bone_name) const {
   return -1;
 }
 
+std::vector<int> Skeleton::FootBones() const {
+  std::vector<int> feet;
+  for (const char* name : {"lfoot", "rfoot", "ltoes", "rtoes"}) {
+    if (const int b = FindBone(name); b >= 0) feet.push_back(b);
+  }
+  return feet;
+}
+
 int Skeleton::NumChannels() const {
   int n = 0;
   for (const Bone& bone : bones) n += static_cast<int>(bone.dofs.size());

@@ -58,6 +58,8 @@ struct Skeleton {
   double MillimetresPerUnit() const { return 25.4 / length_scale; }
   // Index of the bone with this name, or -1.
   int FindBone(std::string_view name) const;
+  // The bones whose ends touch the floor (lfoot, rfoot, ltoes, rtoes), those it has.
+  std::vector<int> FootBones() const;
   // Total number of dof values per frame (62 for the standard CMU skeleton).
   int NumChannels() const;
   // Index of each bone's first value in a frame vector (bones in skeleton order, each

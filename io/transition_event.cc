@@ -96,11 +96,7 @@ int FindTransitionFrame(const Skeleton& skeleton, const Motion& motion, Transiti
   auto frames = [&](double seconds) { return std::max(1, static_cast<int>(std::lround(seconds * fps))); };
   const int window = 2 * (frames(rules.smoothing_s) / 2) + 1;
 
-  // Feet: each side's foot and toes ends, as many as the skeleton has.
-  std::vector<int> feet;
-  for (const char* name : {"lfoot", "rfoot", "ltoes", "rtoes"}) {
-    if (const int b = skeleton.FindBone(name); b >= 0) feet.push_back(b);
-  }
+  const std::vector<int> feet = skeleton.FootBones();
   if ((kind == TransitionKind::kKick || kind == TransitionKind::kJump) && feet.size() < 2) {
     ThrowInputError(source, std::string("a ") + TransitionKindName(kind) +
                                 " needs the skeleton's feet (lfoot and rfoot bones), which it lacks");

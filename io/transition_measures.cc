@@ -75,10 +75,7 @@ TransitionMeasures MeasureTransition(const Skeleton& skeleton, const RowMatrixXd
   if (!truth.allFinite() || !estimate.allFinite()) ThrowInputError("transition measures", "a frame is not finite");
   const GaitPoseLayout layout(skeleton, "transition measures");
   const std::vector<int>& measured = layout.measured_columns();
-  std::vector<int> feet;
-  for (const char* name : {"lfoot", "rfoot", "ltoes", "rtoes"}) {
-    if (const int b = skeleton.FindBone(name); b >= 0) feet.push_back(b);
-  }
+  const std::vector<int> feet = skeleton.FootBones();
   const Kinematics kinematics(skeleton);
   const Track t = Compute(kinematics, truth), e = Compute(kinematics, estimate);
   const double fps = window.frames_per_second;

@@ -42,7 +42,7 @@ Trial ReadTrial(const TransitionEvent& event, const std::filesystem::path& root,
 
 // Rows [first, first + count * step) every `step`-th, as a motion input.
 MotionInput Cut(const MotionInput& whole, int first, int count, int step) {
-  MotionInput in = whole;
+  MotionInput in{whole.skeleton, whole.asf_text, {}, whole.source};
   in.motion.values = RowMatrixXd(count, whole.motion.values.cols());
   for (int i = 0; i < count; ++i) in.motion.values.row(i) = whole.motion.values.row(first + i * step);
   in.motion.frames_per_second = whole.motion.frames_per_second / step;
@@ -99,10 +99,7 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
       ThrowInputError(trial.whole.source, "its rate is not a whole multiple of the transition's");
     }
     const Skeleton& skeleton = trial.whole.skeleton;
-    std::vector<int> feet;
-    for (const char* name : {"lfoot", "rfoot", "ltoes", "rtoes"}) {
-      if (const int b = skeleton.FindBone(name); b >= 0) feet.push_back(b);
-    }
+    const std::vector<int> feet = skeleton.FootBones();
     const Kinematics kinematics(skeleton);
     for (const int shift : options.shifts) {
       for (const int n : options.frames) {

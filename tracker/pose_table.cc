@@ -55,10 +55,7 @@ PoseTable::PoseTable(const GaitModel& model, const PoseTableOptions& options) : 
   bones_ = static_cast<int>(skeleton.bones.size());
   channels_ = model.NumChannels();
   fast_size_ = 3 * bones_ + 2;
-  std::vector<int> feet;
-  for (const char* name : {"lfoot", "rfoot", "ltoes", "rtoes"}) {
-    if (const int b = skeleton.FindBone(name); b >= 0) feet.push_back(b);
-  }
+  const std::vector<int> feet = skeleton.FootBones();
   if (feet.empty()) ThrowInputError("the model's skeleton", "has no lfoot, rfoot, ltoes or rtoes bone to stand on");
 
   const int nodes = n_[0] * n_[1] * n_[2];

@@ -16,9 +16,7 @@ void StateModel::Diffuse(double scale, Random* random, double* state) const {
 double StateModel::Period(int) const { return 0; }
 
 PosePlacer::PosePlacer(const Skeleton& skeleton) : layout_(skeleton, "the model's skeleton"), kinematics_(skeleton) {
-  for (const char* name : {"lfoot", "rfoot", "ltoes", "rtoes"}) {
-    if (const int b = skeleton.FindBone(name); b >= 0) feet_.push_back(b);
-  }
+  feet_ = skeleton.FootBones();
   if (feet_.empty()) ThrowInputError("the model's skeleton", "has no lfoot, rfoot, ltoes or rtoes bone to stand on");
 }
 
