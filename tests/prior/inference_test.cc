@@ -452,7 +452,9 @@ TEST(InferencePosture, MissingChannelsTakeThePriorsConditionalMean) {
   const InferenceResult r = InferLatentSequence(model, o, Adapting());
   std::vector<int> obs, mis;
   for (int k = 0; k < channels; ++k) (observed[k] ? obs : mis).push_back(k);
-  const Eigen::MatrixXd& sigma = PosturePrior::FromTrainingSet(set).covariance();
+  // The prior is kept by value: a reference into a temporary's covariance would dangle.
+  const PosturePrior prior = PosturePrior::FromTrainingSet(set);
+  const Eigen::MatrixXd& sigma = prior.covariance();
   const Eigen::MatrixXd oo = sigma(obs, obs), mo = sigma(mis, obs);
   const Eigen::VectorXd expected = mo * oo.ldlt().solve(r.posture_deg(obs));
   EXPECT_GT(r.posture_deg(obs).mean(), 2.0);  // the premise: an offset was found
