@@ -57,13 +57,17 @@ std::string_view TransitionMethodName(TransitionMethod method) {
     case TransitionMethod::kLinear: return "li";
     case TransitionMethod::kRandom: return "ri";
     case TransitionMethod::kSlerp: return "slerp";
+    case TransitionMethod::kHold: return "hold";
+    case TransitionMethod::kOracle: return "oracle";
+    case TransitionMethod::kLsopaRetrained: return "lsopa-rt";
   }
   return "?";
 }
 
 bool ParseTransitionMethod(std::string_view name, TransitionMethod* method) {
   for (TransitionMethod m : {TransitionMethod::kLsopa, TransitionMethod::kLinear, TransitionMethod::kRandom,
-                             TransitionMethod::kSlerp}) {
+                             TransitionMethod::kSlerp, TransitionMethod::kHold, TransitionMethod::kOracle,
+                             TransitionMethod::kLsopaRetrained}) {
     if (name == TransitionMethodName(m)) {
       *method = m;
       return true;
@@ -73,7 +77,7 @@ bool ParseTransitionMethod(std::string_view name, TransitionMethod* method) {
 }
 
 MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput& b,
-                                         const MotionTransitionOptions& options) {
+                                         const MotionTransitionOptions& options, const RowMatrixXd* truth) {
   std::string why;
   if (!options.transition.path.Check(&why)) ThrowInputError("transition options", why);
   if (!(options.frames_per_second > 0) || options.context < 3) {
@@ -90,9 +94,16 @@ MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput
   result.frames = n;
   result.first = static_cast<int>(frames_a.rows());
   result.other_skeleton = a.asf_text != b.asf_text;
+  if (options.method == TransitionMethod::kOracle &&
+      (!truth || truth->rows() != n || truth->cols() != frames_a.cols() || !truth->allFinite())) {
+    ThrowInputError("--method oracle", "needs the true transition (" + std::to_string(n) +
+                                           " finite frames on A's skeleton): only the evaluation suite has it");
+  }
   RowMatrixXd transition(n, frames_a.cols());
   if (options.method == TransitionMethod::kSlerp) {
     transition = SlerpTransition(a.skeleton, last_a, first_b, n);
+  } else if (options.method == TransitionMethod::kHold) {
+    transition = last_a.replicate(n, 1);
   } else {
     const GaitPoseLayout layout(a.skeleton, a.source);
     const int t = static_cast<int>(std::min<Eigen::Index>({frames_a.rows(), frames_b.rows(), options.context}));
@@ -116,19 +127,48 @@ MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput
       UnwrapDegrees(std::span<double>(column.data(), column.size()));
       poses.col(c) = column;
     }
+    // The frame of transition frame i turns by s_i of the turn, s_i = (i + 1) / (N + 1).
+    const auto heading_at = [&](int i) { return heading_a + turn * (i + 1) / (n + 1); };
     TransitionOptions transition_options = options.transition;
-    transition_options.method = options.method == TransitionMethod::kLsopa   ? LatentPathMethod::kLsopa
-                                : options.method == TransitionMethod::kLinear ? LatentPathMethod::kLinear
-                                                                              : LatentPathMethod::kRandom;
-    const Transition generated =
-        MakeTransition(poses.topRows(t), poses.bottomRows(t), {a.source, a.asf_text}, transition_options);
+    transition_options.method = options.method == TransitionMethod::kLinear   ? LatentPathMethod::kLinear
+                                : options.method == TransitionMethod::kRandom ? LatentPathMethod::kRandom
+                                : options.method == TransitionMethod::kOracle ? LatentPathMethod::kOracle
+                                                                              : LatentPathMethod::kLsopa;
+    transition_options.retrain = options.method == TransitionMethod::kLsopaRetrained;
+    Eigen::MatrixXd truth_poses;
+    if (truth) {
+      // The truth as the model would have to produce it: with the headings the output uses.
+      truth_poses.resize(n, layout.NumChannels());
+      for (int i = 0; i < n; ++i) {
+        Eigen::RowVectorXd pose(layout.NumChannels());
+        layout.FromFrame(truth->row(i).data(), heading_at(i), pose.data());
+        truth_poses.row(i) = pose;
+      }
+      // On the branch of the unwrapped motions: each channel within 180 degrees of A's end.
+      for (int i = 0; i < n; ++i) {
+        for (Eigen::Index c = 0; c < truth_poses.cols(); ++c) {
+          truth_poses(i, c) = poses(t - 1, c) + WrapDegrees(truth_poses(i, c) - poses(t - 1, c));
+        }
+      }
+    }
+    const Transition generated = MakeTransition(poses.topRows(t), poses.bottomRows(t), {a.source, a.asf_text},
+                                                transition_options, truth ? &truth_poses : nullptr);
+    Eigen::MatrixXd generated_poses = generated.poses_deg;
+    if (generated.retrained) {
+      generated_poses = generated.retrained_poses_deg;
+      result.retrain_change_deg = (generated_poses - generated.poses_deg).cwiseAbs().maxCoeff();
+      const Eigen::MatrixXd& x = generated.model->latent();
+      const double span = (x.row(t) - x.row(t - 1)).norm();
+      result.retrain_latent_shift =
+          (generated.retrained_latent - generated.latent).rowwise().norm().mean() / std::max(span, 1e-12);
+    }
     Eigen::RowVectorXd frame(frames_a.cols());
     for (int i = 0; i < n; ++i) {
       // What the model does not carry, linearly; then the generated gait channels.
       const double s = static_cast<double>(i + 1) / (n + 1);
       transition.row(i) = (1 - s) * last_a + s * first_b;
-      const Eigen::RowVectorXd pose = generated.poses_deg.row(i);
-      layout.ToFrame(pose.data(), heading_a + s * turn, Eigen::Vector3d::Zero(), frame.data());
+      const Eigen::RowVectorXd pose = generated_poses.row(i);
+      layout.ToFrame(pose.data(), heading_at(i), Eigen::Vector3d::Zero(), frame.data());
       for (int c : layout.skeleton_channels()) transition(i, c) = frame(c);
     }
   }

@@ -12,7 +12,11 @@
 //   (io/gait_pose.h): A's last heading taken out of A, B's first out of B (the GPDM models
 //   the body, not where it faces), each channel unwrapped along A then B; the generated
 //   poses go back to frames turning evenly from the one heading to the other.
-//   SLERP (io/slerp_transition.h) works on the frames directly.
+//   SLERP (io/slerp_transition.h) works on the frames directly; hold repeats A's last
+//   frame. The oracle (evaluation only) fits the GPDM's latent points to the true
+//   transition's gait poses, taken with the same headings; lsopa-rt is LSOPA followed by
+//   Algorithm 1's retraining on [A; transition; B], its transition the new model's
+//   (prior/transition.h).
 // - What the gait model does not carry is interpolated linearly between A's last frame and
 //   B's first, for every method: the root's translation and heading (the GP generates the
 //   body's angles, not travel or turning) and the channels outside the 18 gait joints
@@ -28,8 +32,9 @@
 
 namespace jgpm {
 
-enum class TransitionMethod { kLsopa, kLinear, kRandom, kSlerp };
-std::string_view TransitionMethodName(TransitionMethod method);  // "lsopa", "li", "ri", "slerp"
+enum class TransitionMethod { kLsopa, kLinear, kRandom, kSlerp, kHold, kOracle, kLsopaRetrained };
+// "lsopa", "li", "ri", "slerp", "hold", "oracle", "lsopa-rt"
+std::string_view TransitionMethodName(TransitionMethod method);
 bool ParseTransitionMethod(std::string_view name, TransitionMethod* method);
 
 struct MotionTransitionOptions {
@@ -53,12 +58,18 @@ struct MotionTransitionResult {
   int context = 0;          // T, frames of A and of B the GPDM learnt (0 for SLERP)
   bool other_skeleton = false;  // B's skeleton was not A's
   double seconds = 0;       // generating the transition, GPDM training included
+  // lsopa-rt: the largest change retraining made to a gait channel of LSOPA's transition,
+  // and the mean distance its transition latent points moved, over |b - a|.
+  double retrain_change_deg = 0;
+  double retrain_latent_shift = 0;
 };
 
-// InputError naming the motion for a rate that is not a multiple of frames_per_second,
-// fewer than 3 frames after resampling, a channel of A that B lacks, non-finite values,
-// or bad options.
+// `truth`: the true transition's N frames at frames_per_second on A's skeleton, for the
+// oracle only. InputError naming the motion for a rate that is not a multiple of
+// frames_per_second, fewer than 3 frames after resampling, a channel of A that B lacks,
+// non-finite values, bad options, or the oracle without the truth.
 MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput& b,
-                                         const MotionTransitionOptions& options);
+                                         const MotionTransitionOptions& options,
+                                         const RowMatrixXd* truth = nullptr);
 
 }  // namespace jgpm

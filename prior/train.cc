@@ -107,6 +107,17 @@ std::unique_ptr<GaitModel> TrainGaitModel(TrainingSet training_set, const std::s
   data.params.log_beta = Eigen::Vector3d(0, 0, std::log(100.0));
   if (spec.terms.dynamics) data.params.log_alpha = Eigen::Vector4d(0, 0, std::log(0.1), std::log(1e4));
   if (spec.terms.channel_scales) data.params.log_w = Eigen::VectorXd::Zero(set.NumChannels());
+  if (options.start) {
+    const GpParameters& start = *options.start;
+    if (start.x.rows() != data.params.x.rows() || start.x.cols() != 3 ||
+        start.log_beta.size() != data.params.log_beta.size() ||
+        start.log_alpha.size() != data.params.log_alpha.size() || start.log_w.size() != data.params.log_w.size()) {
+      ThrowInputError("training options", "the starting parameters' sizes are not the model's (" +
+                                              std::to_string(data.params.x.rows()) + " latent points)");
+    }
+    if (!start.x.allFinite()) ThrowInputError("training options", "the starting latent points are not finite");
+    data.params = start;
+  }
 
   const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);
   const bool budget_set = options.budget.max_seconds > 0 || options.budget.interrupted;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "io/gait_dataset.h"
@@ -25,6 +26,9 @@ struct TrainingOptions {
   LocalTrainingOptions local;
   ProgressCallback progress;         // overrides full.progress and local.progress
   TrainingBudget budget;             // when set, overrides full.budget and local.budget
+  // Where a GP model starts instead of the initial values below (a model trained further,
+  // e.g. Algorithm 1's retraining of a transition's GPDM); its sizes must be the model's.
+  std::optional<GpParameters> start;
 
   bool Check(std::string* why) const;
 };

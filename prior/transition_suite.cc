@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "io/amc.h"
@@ -101,6 +102,18 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
     const Skeleton& skeleton = trial.whole.skeleton;
     const std::vector<int> feet = skeleton.FootBones();
     const Kinematics kinematics(skeleton);
+    // First row of the 30 fps window (A, the truth's N, B) of a case, when it is within the trial.
+    const auto window_start = [&](int shift, int n) -> std::optional<int> {
+      const int first_a = trial.event + shift * step - (n / 2 + options.context) * step;
+      const int count = 2 * options.context + n;
+      if (first_a < 0 || first_a + (count - 1) * step >= trial.whole.motion.NumFrames()) return std::nullopt;
+      return first_a;
+    };
+    // The strip's case: shift 0 and the middle N, else the first N that fits.
+    int strip_n = -1;
+    for (const int n : options.frames) {
+      if (window_start(0, n) && (strip_n < 0 || n == options.frames[options.frames.size() / 2])) strip_n = n;
+    }
     for (const int shift : options.shifts) {
       for (const int n : options.frames) {
         const std::string label = event.trial + " " + TransitionKindName(event.kind) + " shift " +
@@ -108,16 +121,16 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
         if (progress) progress(done, total, label);
         ++done;
         // Rows of the 30 fps window: A, the truth's N, B.
-        const int centre = trial.event + shift * step;
-        const int first_a = centre - (n / 2 + options.context) * step;
-        const int count = 2 * options.context + n;
-        if (first_a < 0 || first_a + (count - 1) * step >= trial.whole.motion.NumFrames()) {
+        const std::optional<int> start = window_start(shift, n);
+        if (!start) {
           ++result.skipped;
           continue;
         }
+        const int first_a = *start, count = 2 * options.context + n;
         const MotionInput window = Cut(trial.whole, first_a, count, step);
         const MotionInput a = Cut(trial.whole, first_a, options.context, step);
         const MotionInput b = Cut(trial.whole, first_a + (options.context + n) * step, options.context, step);
+        const RowMatrixXd truth = window.motion.values.middleRows(options.context, n);  // for the oracle
         TransitionWindow measure;
         measure.first = options.context;
         measure.frames = n;
@@ -128,7 +141,7 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
           for (int foot : feet) measure.floor_mm = std::min(measure.floor_mm, joints(1, foot));
         }
         if (feet.empty()) measure.floor_mm = -1e9;
-        const bool strip = shift == 0 && n == options.frames[options.frames.size() / 2];
+        const bool strip = shift == 0 && n == strip_n;
         if (strip) {
           result.strips.push_back({event.trial, event.kind, skeleton, {}});
           result.strips.back().motions.emplace_back(
@@ -151,10 +164,12 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
             o.context = options.context;
             o.transition.path.frames = n;
             o.transition.seed = static_cast<uint64_t>(seed);
-            const MotionTransitionResult generated = TransitionBetween(a, b, o);
+            const MotionTransitionResult generated = TransitionBetween(a, b, o, &truth);
             const TransitionMeasures m = MeasureTransition(skeleton, window.motion.values, generated.motion.values, measure);
             Accumulate(&row.measures, m, 1.0 / seeds);
             row.seconds += generated.seconds / seeds;
+          row.retrain_change_deg = generated.retrain_change_deg;
+          row.retrain_latent_shift = generated.retrain_latent_shift;
             eq23.push_back(m.eq23_root_aligned_mean_mm);
             if (strip && seed == 1) {
               result.strips.back().motions.emplace_back(
@@ -181,16 +196,17 @@ std::string TransitionSuiteCsv(const TransitionSuiteResult& result) {
   std::ostringstream csv;
   csv << "trial,kind,tune,event_frame,shift,N,method,eq23_mm,eq23_std_mm,eq23_world_mm,l2p_m,l2q,npss,"
          "foot_skate_mps,true_foot_skate_mps,seam1_jump_mps,seam2_jump_mps,true_seam1_jump_mps,true_seam2_jump_mps,"
-         "seconds\n";
+         "seconds,retrain_change_deg,retrain_latent_shift\n";
   char line[512];
   for (const TransitionSuiteRow& r : result.rows) {
     const TransitionMeasures& m = r.measures;
     std::snprintf(line, sizeof line,
-                  "%s,%s,%s,%d,%d,%d,%s,%.3f,%.3f,%.3f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f\n",
+                  "%s,%s,%s,%d,%d,%d,%s,%.3f,%.3f,%.3f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.4f,%.5f\n",
                   r.trial.c_str(), TransitionKindName(r.kind), r.tune ? "yes" : "no", r.event_frame, r.shift,
                   r.frames, std::string(TransitionMethodName(r.method)).c_str(), m.eq23_root_aligned_mean_mm, r.eq23_std_mm,
                   m.eq23_mean_mm, m.l2p_m, m.l2q, m.npss, m.foot_skate_mps, m.true_foot_skate_mps,
-                  m.seam_jump_mps[0], m.seam_jump_mps[1], m.true_seam_jump_mps[0], m.true_seam_jump_mps[1], r.seconds);
+                  m.seam_jump_mps[0], m.seam_jump_mps[1], m.true_seam_jump_mps[0], m.true_seam_jump_mps[1], r.seconds,
+                  r.retrain_change_deg, r.retrain_latent_shift);
     csv << line;
   }
   return csv.str();

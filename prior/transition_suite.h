@@ -10,7 +10,8 @@
 // eq23_mm places the root as in the truth (root-aligned: the pose alone); eq23_world_mm
 // keeps the method's own root path (linear for every method), as L2P does. The floor for
 // foot skating is the truth's lowest foot point in the window. RI is run with
-// `random_seeds` seeds and reported as their mean (and the spread of eq23_mm).
+// `random_seeds` seeds and reported as their mean (and the spread of eq23_mm). The oracle
+// is given the true transition; every other method only A and B.
 #pragma once
 
 #include <filesystem>
@@ -27,8 +28,10 @@ namespace jgpm {
 struct TransitionSuiteOptions {
   std::vector<int> frames = {5, 15, 30};     // N
   std::vector<int> shifts = {-4, 0, 4};      // of the event, frames at 30 fps
-  std::vector<TransitionMethod> methods = {TransitionMethod::kLsopa, TransitionMethod::kLinear,
-                                           TransitionMethod::kRandom, TransitionMethod::kSlerp};
+  std::vector<TransitionMethod> methods = {TransitionMethod::kLsopa,  TransitionMethod::kLinear,
+                                           TransitionMethod::kRandom, TransitionMethod::kSlerp,
+                                           TransitionMethod::kHold,   TransitionMethod::kOracle,
+                                           TransitionMethod::kLsopaRetrained};
   int context = 45;                          // frames of A and of B
   int random_seeds = 20;                     // RI
   TransitionRules rules;
@@ -46,9 +49,11 @@ struct TransitionSuiteRow {
   TransitionMeasures measures;  // RI: the mean over its seeds
   double eq23_std_mm = 0;       // RI: the spread of eq. 23 (root-aligned) over its seeds
   double seconds = 0;           // generating one transition (RI: the mean)
+  double retrain_change_deg = 0, retrain_latent_shift = 0;  // lsopa-rt (MotionTransitionResult)
 };
 
-// For looking at: per event, at shift 0 and the middle N, the truth and each method from
+// For looking at: per event, at shift 0 and the middle N (else the first N that fits in
+// the trial), the truth and each method from
 // 8 frames before the transition to 8 after (RI: its first seed).
 struct TransitionStrip {
   std::string trial;

@@ -34,7 +34,7 @@ TEST(TransitionCli, JoinsTwoRangesOfATrial) {
   const Skeleton skeleton = Skeleton131();
   const Motion trial = ReadAmc(Trial(), skeleton);
   const Kinematics kinematics(skeleton);
-  for (const char* method : {"lsopa", "li", "ri", "slerp"}) {
+  for (const char* method : {"lsopa", "lsopa-rt", "li", "ri", "slerp", "hold"}) {
     const fs::path out = dir.path() / (std::string(method) + ".amc");
     const test::CommandResult r = test::RunJgpm("transition --from " + Trial() + ":500-740 --to " + Trial() +
                                                 ":804-1000 --frames 15 --method " + method + " --out " +
@@ -49,6 +49,13 @@ TEST(TransitionCli, JoinsTwoRangesOfATrial) {
     }
     for (int k = 0; k < 50; ++k) {
       EXPECT_LT((m.values.row(76 + k) - trial.values.row(804 - 1 + 4 * k)).cwiseAbs().maxCoeff(), 1e-5) << k;
+    }
+    if (std::string(method) == "hold") {  // A's last frame, root included, N times
+      for (int i = 1; i <= 15; ++i) EXPECT_EQ(m.values.row(60 + i), m.values.row(60)) << i;
+      continue;
+    }
+    if (std::string(method) == "lsopa-rt") {
+      EXPECT_NE(r.out.find("retraining on [A; transition; B] moved"), std::string::npos) << r.out;
     }
     // The transition's root moves from A's last root to B's first, evenly.
     const Eigen::Vector3d start = kinematics.Compute(m.Frame(60)).col(0), end = kinematics.Compute(m.Frame(76)).col(0);
@@ -111,7 +118,8 @@ TEST(TransitionCli, RefusesBadRequestsOnOneLine) {
       {"--from " + Trial() + ":740-500 --to " + Trial(), "not within"},
       {"--from " + Trial() + ":1-99999 --to " + Trial(), "not within"},
       {"--from " + Trial() + ":500-505 --to " + Trial(), "at least 3"},
-      {"--from " + Trial() + " --to " + Trial() + " --method spline", "lsopa, li, ri or slerp"},
+      {"--from " + Trial() + " --to " + Trial() + " --method spline", "lsopa, lsopa-rt, li, ri, slerp or hold"},
+      {"--from " + Trial() + " --to " + Trial() + " --method oracle", "lsopa, lsopa-rt, li, ri, slerp or hold"},
       {"--from " + Trial() + " --to " + (dir.path() / "none.amc").string(), "none.amc"},
       {"--from " + Trial() + " --to " + Trial() + " --asf " + small, "not in the ASF skeleton"},
       {"--from " + Trial() + " --to " + other, "its skeleton has no channel"},
@@ -130,15 +138,16 @@ TEST(TransitionCli, RefusesBadRequestsOnOneLine) {
 }
 
 // The suite on one event: its frame is the rule's (the oracle: FindTransitionFrame on the
-// trial), every shift x N x method that fits in the trial has a row with finite measures,
-// and the event's strip is written; a malformed list is refused on one line.
+// trial), every shift x N x method asked for that fits in the trial has a row with finite
+// measures and N per-frame rows, the latent oracle is below the latent line, and the
+// strip, plots and intervals are written; a malformed list or method is refused on one line.
 TEST(TransitionCli, SuiteMeasuresEveryCaseOfAnEvent) {
   const test::TempDir dir;
   const std::string events = dir.Write("events.txt", "# one event\n131_05 duck\n").string();
   const fs::path out = dir.path() / "out";
   const test::CommandResult r =
       test::RunJgpm("eval --suite transitions --events " + events + " --data " + test::CmuRoot().string() +
-                    " --out " + out.string());
+                    " --methods lsopa,li,hold,oracle --frames 5,15,30 --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const Skeleton skeleton = Skeleton131();
   const Motion trial = ReadAmc(Trial(), skeleton);
@@ -148,14 +157,17 @@ TEST(TransitionCli, SuiteMeasuresEveryCaseOfAnEvent) {
   std::getline(csv, line);
   EXPECT_EQ(line.rfind("trial,kind,tune,event_frame,shift,N,method,eq23_mm,", 0), 0u) << line;
   std::map<std::string, int> methods;
-  int rows = 0;
+  std::map<std::string, double> eq23;
+  int rows = 0, frames = 0;
   while (std::getline(csv, line)) {
     std::vector<std::string> cells;
     std::stringstream split(line);
     for (std::string cell; std::getline(split, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 20u) << line;
+    ASSERT_EQ(cells.size(), 22u) << line;
     EXPECT_EQ(std::stoi(cells[3]), expected) << line;
     ++methods[cells[6]];
+    eq23[cells[6]] += std::stod(cells[7]);
+    frames += std::stoi(cells[5]);
     for (size_t c = 7; c < cells.size(); ++c) EXPECT_TRUE(std::isfinite(std::stod(cells[c]))) << line;
     ++rows;
   }
@@ -163,7 +175,26 @@ TEST(TransitionCli, SuiteMeasuresEveryCaseOfAnEvent) {
   const int skipped = std::stoi(r.out.substr(r.out.find(" rows, ") + 7));
   EXPECT_EQ(rows, (9 - skipped) * 4) << r.out;
   EXPECT_EQ(methods.size(), 4u);
+  EXPECT_LT(eq23["oracle"], eq23["li"]) << r.out;
+  std::ifstream per_frame(out / "per_frame.csv");
+  int per_frame_rows = -1;  // the header
+  while (std::getline(per_frame, line)) ++per_frame_rows;
+  EXPECT_EQ(per_frame_rows, frames);
   EXPECT_TRUE(fs::exists(out / "strips" / "131_05-duck.png"));
+  EXPECT_TRUE(fs::exists(out / "plots" / "duck-15.png"));
+  std::ifstream intervals(out / "intervals.csv");
+  std::getline(intervals, line);
+  EXPECT_EQ(line, "scope,other,cases,events,lsopa_minus_other_mm,low_mm,high_mm,lsopa_lower");
+  std::getline(intervals, line);
+  EXPECT_EQ(line.rfind("all,li,", 0), 0u) << line;
+  EXPECT_NE(r.out.find("LSOPA minus each method"), std::string::npos) << r.out;
+
+  const test::CommandResult bad_method = test::RunJgpm("eval --suite transitions --events " + events +
+                                                       " --methods lsopa,spline --out " + (dir.path() / "out3").string());
+  EXPECT_NE(bad_method.status, 0);
+  EXPECT_EQ(Lines(bad_method.err), 1) << bad_method.err;
+  EXPECT_NE(bad_method.err.find("--methods: 'spline' is not"), std::string::npos) << bad_method.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "out3"));
 
   const std::string bad = dir.Write("bad.txt", "131_05 hop\n").string();
   const test::CommandResult refused =

@@ -59,8 +59,8 @@ MotionInput ReadRange(const std::string& spec, const std::string& option, const 
 }
 
 void RunTransition(TransitionArguments a) {
-  if (!ParseTransitionMethod(a.method, &a.options.method)) {
-    ThrowInputError("--method " + a.method, "expected lsopa, li, ri or slerp");
+  if (!ParseTransitionMethod(a.method, &a.options.method) || a.options.method == TransitionMethod::kOracle) {
+    ThrowInputError("--method " + a.method, "expected lsopa, lsopa-rt, li, ri, slerp or hold");
   }
   const std::string extension = std::filesystem::path(a.out).extension().string();
   if (extension != ".amc" && extension != ".bvh") ThrowInputError("--out " + a.out, "expected a .amc or .bvh file name");
@@ -84,20 +84,26 @@ void RunTransition(TransitionArguments a) {
                                 std::to_string(result.context) + " frames")
                                    .c_str()
                              : "");
+  if (a.options.method == TransitionMethod::kLsopaRetrained) {
+    std::printf("retraining on [A; transition; B] moved the transition's latent points by %.3f |b - a| on average "
+                "and changed a gait channel of it by %.3f degrees at most\n",
+                result.retrain_latent_shift, result.retrain_change_deg);
+  }
 }
 
 }  // namespace
 
 void AddTransitionCommands(CLI::App& app) {
   auto a = std::make_shared<TransitionArguments>();
-  CLI::App* t = app.add_subcommand("transition", "Generate the motion between two motions (LSOPA, or li, ri, slerp)");
+  CLI::App* t = app.add_subcommand("transition", "Generate the motion between two motions (LSOPA, or lsopa-rt, li, ri, slerp, hold)");
   t->add_option("--from", a->from, "motion A: FILE.amc[:FIRST-LAST] (AMC frame numbers)")->required();
   t->add_option("--to", a->to, "motion B: FILE.amc[:FIRST-LAST]")->required();
   t->add_option("--asf", a->asf, "A's skeleton (default: the ASF beside the AMC)");
   t->add_option("--frames", a->options.transition.path.frames, "transition frames N")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  t->add_option("--method", a->method, "lsopa, li (straight latent line), ri (random latent points), slerp")
+  t->add_option("--method", a->method, "lsopa, lsopa-rt (LSOPA, then Algorithm 1's retraining on [A; transition; B]), li (straight latent "
+                "line), ri (random latent points), slerp, hold (A's last frame)")
       ->capture_default_str();
   t->add_option("--seed", a->options.transition.seed, "ri: the random points' seed")->capture_default_str();
   t->add_option("--out", a->out, "OUT.amc (with OUT.asf beside it) or OUT.bvh: A, the transition and B")->required();

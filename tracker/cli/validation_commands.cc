@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -21,6 +22,7 @@
 #include "prior/loso.h"
 #include "prior/png_file.h"
 #include "prior/synthesis.h"
+#include "prior/transition_report.h"
 #include "prior/transition_suite.h"
 #include "prior/model_file.h"
 #include "prior/validation.h"
@@ -49,6 +51,10 @@ struct EvalArguments {
   std::string json;
   std::string out;
   std::string events;
+  std::string methods = "lsopa,li,ri,slerp,hold,oracle,lsopa-rt";
+  std::string frames = "5,15,30";
+  double peak_offset = LatentTransitionOptions{}.peak_offset;
+  double max_angle = LatentTransitionOptions{}.max_angle_deg;
 };
 
 std::vector<bool> AdaptModes(const std::string& adapt) {  // none, posture, both
@@ -146,12 +152,43 @@ void RunLoso(const EvalArguments& a) {
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
-// `jgpm eval --suite transitions`: every event x shift x N x method of the event list;
-// OUT/transitions.csv, a summary per kind, N and method, and a strip per event (the truth
-// over each method, at shift 0 and N = 15) in OUT/strips.
+// Comma-separated items of an option, each parsed by `parse` (false: refused, naming it).
+template <typename T, typename Parse>
+std::vector<T> ParseList(const std::string& text, const std::string& option, const std::string& expected, Parse parse) {
+  std::vector<T> items;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    T value{};
+    if (!parse(item, &value)) ThrowInputError(option, "'" + item + "' is not " + expected);
+    items.push_back(value);
+  }
+  if (items.empty()) ThrowInputError(option, "give at least one of " + expected);
+  return items;
+}
+
+// `jgpm eval --suite transitions`: every event x shift x N x method of the event list.
+// OUT/transitions.csv (one row per case and method), per_frame.csv, intervals.csv (paired
+// bootstrap of LSOPA against each other method), plots/KIND-N.png (mean error per
+// transition frame), strips/TRIAL-KIND.png (the truth over each method, shift 0, middle N
+// or the first N that fits).
 void RunTransitions(const EvalArguments& a) {
   if (!a.models.empty() || !a.task.empty()) ThrowInputError("--suite transitions", "takes no --model or --task");
   if (a.out.empty()) ThrowInputError("--suite transitions", "needs --out DIR for the CSV and the strips");
+  TransitionSuiteOptions options;
+  options.methods = ParseList<TransitionMethod>(a.methods, "--methods", "lsopa, li, ri, slerp, hold, oracle or lsopa-rt",
+                                                [](const std::string& t, TransitionMethod* m) {
+                                                  return ParseTransitionMethod(t, m);
+                                                });
+  options.frames = ParseList<int>(a.frames, "--frames", "a frame count from 1 to 300", [](const std::string& t, int* n) {
+    char* end = nullptr;
+    const long v = std::strtol(t.c_str(), &end, 10);
+    *n = static_cast<int>(v);
+    return !t.empty() && *end == '\0' && v >= 1 && v <= 300;
+  });
+  options.transition.transition.path.peak_offset = a.peak_offset;
+  options.transition.transition.path.max_angle_deg = a.max_angle;
+  std::string why;
+  if (!options.transition.transition.path.Check(&why)) ThrowInputError("--peak-offset/--max-angle", why);
   const std::filesystem::path events_path =
       a.events.empty() ? std::filesystem::path(JGPM_SPLITS_DIR).parent_path() / "transitions.txt"
                        : std::filesystem::path(a.events);
@@ -162,13 +199,23 @@ void RunTransitions(const EvalArguments& a) {
     ThrowInputError((out / "transitions.csv").string(), "exists; give another --out");
   }
   std::filesystem::create_directories(out / "strips");
+  std::filesystem::create_directories(out / "plots");
   ProgressLine line("transitions");
   const TransitionSuiteResult result = RunTransitionSuite(
-      events, root, TransitionSuiteOptions{},
+      events, root, options,
       [&](int done, int total, const std::string& label) { line.Update(done, total, "cases", label); });
   line.Finish();
   OutputBatch batch;
   batch.Add(out / "transitions.csv", TransitionSuiteCsv(result));
+  batch.Add(out / "per_frame.csv", TransitionPerFrameCsv(result));
+  std::vector<PairedInterval> intervals;
+  for (const bool tune : {false, true}) {
+    for (PairedInterval p : LsopaIntervals(result, tune)) {
+      if (tune) p.scope = "tuning " + p.scope;
+      intervals.push_back(p);
+    }
+  }
+  batch.Add(out / "intervals.csv", PairedIntervalsCsv(intervals));
   for (const TransitionStrip& s : result.strips) {
     std::vector<cv::Mat> rows;
     for (const auto& [name, motion] : s.motions) {
@@ -181,22 +228,36 @@ void RunTransitions(const EvalArguments& a) {
     const std::filesystem::path png = out / "strips" / (s.trial + "-" + TransitionKindName(s.kind) + ".png");
     batch.Add(png, EncodePng(strip, png.string()));
   }
-  for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
-  // Summary: mean eq. 23 per kind, N and method over events and shifts (tuning events apart).
-  for (const bool tune : {true, false}) {
-    std::map<std::string, std::pair<double, int>> mean;
-    for (const TransitionSuiteRow& r : result.rows) {
-      if (r.tune != tune) continue;
-      char key[96];
-      std::snprintf(key, sizeof key, "%-6s N=%-3d %-6s", TransitionKindName(r.kind), r.frames,
-                    std::string(TransitionMethodName(r.method)).c_str());
-      mean[key].first += r.measures.eq23_root_aligned_mean_mm;
-      mean[key].second += 1;
+  for (const bool tune : {false, true}) {
+    for (TransitionKind kind : {TransitionKind::kStart, TransitionKind::kStop, TransitionKind::kKick,
+                                TransitionKind::kJump, TransitionKind::kDuck}) {
+      for (int n : options.frames) {
+        const cv::Mat plot = PerFramePlot(result, kind, n, tune);
+        if (plot.empty()) continue;
+        const std::filesystem::path png = out / "plots" / ((tune ? "tuning-" : "") + std::string(TransitionKindName(kind)) +
+                                                          "-" + std::to_string(n) + ".png");
+        batch.Add(png, EncodePng(plot, png.string()));
+      }
     }
-    if (mean.empty()) continue;
-    std::printf("%s events, eq. 23 (mm, root placed as in the truth), mean over events and shifts:\n",
-                tune ? "tuning" : "reported");
-    for (const auto& [key, v] : mean) std::printf("  %s %8.1f  (%d cases)\n", key.c_str(), v.first / v.second, v.second);
+  }
+  for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
+  for (const bool tune : {true, false}) {
+    const std::string table = TransitionSummaryTable(result, tune);
+    if (table.empty()) continue;
+    std::printf("\n%s events, eq. 23 (mm, root placed as in the truth), mean over events and shifts:\n%s",
+                tune ? "tuning" : "reported", table.c_str());
+    bool header = false;
+    for (const PairedInterval& p : LsopaIntervals(result, tune)) {
+      if (p.scope != "all") continue;
+      if (!header) {
+        std::printf("LSOPA minus each method, mean and 95%% paired bootstrap interval (mm), all %s cases:\n",
+                    tune ? "tuning" : "reported");
+        header = true;
+      }
+      std::printf("  %-9s %+7.1f  [%+7.1f, %+7.1f]  LSOPA lower in %d of %d\n",
+                  std::string(TransitionMethodName(p.other)).c_str(), p.mean_mm, p.low_mm, p.high_mm, p.lsopa_lower,
+                  p.cases);
+    }
   }
   std::printf("%zu rows, %d case(s) skipped (not within their trial)\n", result.rows.size(), result.skipped);
 }
@@ -332,6 +393,14 @@ void AddValidationCommands(CLI::App& app) {
       ->check(CLI::IsMember({"none", "posture", "both"}))
       ->capture_default_str();
   eval->add_option("--events", a->events, "transitions: the event list (default datasets_scripts/transitions.txt)");
+  eval->add_option("--methods", a->methods, "transitions: methods, comma-separated")->capture_default_str();
+  eval->add_option("--frames", a->frames, "transitions: transition lengths N, comma-separated")->capture_default_str();
+  eval->add_option("--peak-offset", a->peak_offset, "transitions: LSOPA's largest distance from the line a-b, over |b - a|")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  eval->add_option("--max-angle", a->max_angle, "transitions: LSOPA's theta, degrees either side of C")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
   eval->add_option("--json", a->json, "write mean_error_mm and per-trial errors here");
   eval->add_option("--out", a->out, "folder for the CSV and the PNG charts");
   eval->callback([a] { RunEval(*a); });
