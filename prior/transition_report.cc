@@ -246,4 +246,43 @@ std::string TransitionSummaryTable(const TransitionSuiteResult& result, bool tun
   return table.str();
 }
 
+std::string FootSkateTable(const TransitionSuiteResult& result, bool tune) {
+  const std::vector<TransitionMethod> methods = MethodsOf(result);
+  std::map<int, std::map<TransitionMethod, std::pair<double, int>>> cells;  // N -> method -> (sum, count)
+  std::map<int, std::pair<double, int>> truth;
+  for (const TransitionSuiteRow& r : result.rows) {
+    if (r.tune != tune) continue;
+    auto& cell = cells[r.frames][r.method];
+    cell.first += r.measures.foot_skate_mps;
+    cell.second += 1;
+    if (r.method == methods.front()) {
+      truth[r.frames].first += r.measures.true_foot_skate_mps;
+      truth[r.frames].second += 1;
+    }
+  }
+  if (cells.empty()) return "";
+  std::ostringstream table;
+  table << "| N | truth |";
+  for (TransitionMethod m : methods) table << ' ' << Name(m) << " |";
+  table << "\n|---|---|";
+  for (size_t i = 0; i < methods.size(); ++i) table << "---|";
+  table << '\n';
+  char number[32];
+  for (const auto& [n, by_method] : cells) {
+    std::snprintf(number, sizeof number, "%.2f", truth[n].first / std::max(1, truth[n].second));
+    table << "| " << n << " | " << number << " |";
+    for (TransitionMethod m : methods) {
+      const auto it = by_method.find(m);
+      if (it == by_method.end()) {
+        table << " - |";
+        continue;
+      }
+      std::snprintf(number, sizeof number, "%.2f", it->second.first / it->second.second);
+      table << ' ' << number << " |";
+    }
+    table << '\n';
+  }
+  return table.str();
+}
+
 }  // namespace jgpm

@@ -44,4 +44,8 @@ cv::Mat PerFramePlot(const TransitionSuiteResult& result, TransitionKind kind, i
 // in bold); empty when no event has tune == `tune`.
 std::string TransitionSummaryTable(const TransitionSuiteResult& result, bool tune);
 
+// A Markdown table of foot skating (m/s): per N, the truth's own and each method's mean
+// over the cases; empty when no event has tune == `tune`.
+std::string FootSkateTable(const TransitionSuiteResult& result, bool tune);
+
 }  // namespace jgpm

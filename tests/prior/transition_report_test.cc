@@ -61,8 +61,8 @@ TEST(TransitionReport, PairedBootstrapResamplesEvents) {
   EXPECT_NEAR(kick.low_mm, -3, 1e-12);
   EXPECT_NEAR(kick.high_mm, -3, 1e-12);
   EXPECT_EQ(Find(intervals, "N=5", TransitionMethod::kLinear).cases, 3);
-  const PairedInterval& tuning = Find(LsopaIntervals(result, true, 100), "all", TransitionMethod::kLinear);
-  EXPECT_NEAR(tuning.mean_mm, 99, 1e-12);
+  const std::vector<PairedInterval> tuning = LsopaIntervals(result, true, 100);  // kept: Find returns into it
+  EXPECT_NEAR(Find(tuning, "all", TransitionMethod::kLinear).mean_mm, 99, 1e-12);
   // The same seed, the same intervals.
   EXPECT_EQ(PairedIntervalsCsv(intervals), PairedIntervalsCsv(LsopaIntervals(result, false, 4000, 3)));
 }
@@ -78,6 +78,12 @@ TEST(TransitionReport, TableBoldsTheLowestMethodThatDoesNotSeeTheTruth) {
   EXPECT_NE(table.find("| kind | N | cases | lsopa | slerp | oracle |"), std::string::npos) << table;
   EXPECT_NE(table.find("| start | 15 | 2 | **20.0** | 25.0 | 1.0 |"), std::string::npos) << table;
   EXPECT_TRUE(TransitionSummaryTable(result, true).empty());
+  result.rows[0].measures.foot_skate_mps = 0.5;  // a's lsopa
+  result.rows[0].measures.true_foot_skate_mps = 0.2;
+  result.rows[3].measures.foot_skate_mps = 1.5;  // b's lsopa
+  result.rows[3].measures.true_foot_skate_mps = 0.4;
+  const std::string skate = FootSkateTable(result, false);
+  EXPECT_NE(skate.find("| 15 | 0.30 | 1.00 | 0.00 | 0.00 |"), std::string::npos) << skate;
 }
 
 TEST(TransitionReport, PerFrameRowsAndPlot) {

@@ -246,6 +246,8 @@ void RunTransitions(const EvalArguments& a) {
     if (table.empty()) continue;
     std::printf("\n%s events, eq. 23 (mm, root placed as in the truth), mean over events and shifts:\n%s",
                 tune ? "tuning" : "reported", table.c_str());
+    std::printf("foot skating (m/s, horizontal foot speed within 2.5 cm of the floor), mean over the cases:\n%s",
+                FootSkateTable(result, tune).c_str());
     bool header = false;
     for (const PairedInterval& p : LsopaIntervals(result, tune)) {
       if (p.scope != "all") continue;
