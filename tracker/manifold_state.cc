@@ -32,7 +32,8 @@ void ManifoldStateModel::Sample(const InitialGuess& guess, Random* r, double* s)
   } else {
     s[0] = r->Uniform();
     s[1] = table_.lo()[1] + r->Uniform() * (table_.hi()[1] - table_.lo()[1]);
-    s[2] = table_.lo()[2] + r->Uniform() * (table_.hi()[2] - table_.lo()[2]);
+    s[2] = d_.start_scale_std > 0 ? 1 + d_.start_scale_std * r->Normal()
+                                  : table_.lo()[2] + r->Uniform() * (table_.hi()[2] - table_.lo()[2]);
   }
   s[3] = guess.floor_mm.x() + guess.floor_std_mm * r->Normal();
   s[4] = guess.floor_mm.y() + guess.floor_std_mm * r->Normal();

@@ -29,6 +29,11 @@ struct ManifoldDynamics {
   double size_noise = 0.001;
   double min_cadence = 0.5, max_cadence = 1.6;  // cycles per second
   double min_size = 0.75, max_size = 1.3;
+  // A start without a manifold point draws the stride scale from N(1, start_scale_std)
+  // within the layers' range (0: uniform over it). Scale 1 is the recorded strides; the
+  // other layers are the training data stretched or shrunk (eq. 5) to cover other people,
+  // so most walkers are near 1 and a uniform start spends most particles far from it.
+  double start_scale_std = 0.15;
   // The annealing's diffusion at its first layer.
   double phase_diffusion = 0.04, gait_diffusion = 0.4, scale_diffusion = 0.06, root_diffusion_mm = 30,
          heading_diffusion_deg = 6, cadence_diffusion = 0.03, size_diffusion = 0.01;
