@@ -44,6 +44,27 @@ cv::Scalar MethodColour(TransitionMethod method) {  // BGR
   return {0, 0, 0};
 }
 
+struct Mean {
+  double sum = 0;
+  int n = 0;
+  void Add(double v) { sum += v, ++n; }
+  double value() const { return n ? sum / n : 0; }
+};
+
+std::string Format(const char* format, double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+// A Markdown table's header: the leading columns, then one per method.
+std::string HeaderRow(const std::vector<std::string>& leading, const std::vector<TransitionMethod>& methods) {
+  std::string head = "|", rule = "|";
+  for (const std::string& c : leading) head += " " + c + " |", rule += "---|";
+  for (TransitionMethod m : methods) head += " " + Name(m) + " |", rule += "---|";
+  return head + "\n" + rule + "\n";
+}
+
 PairedInterval Bootstrap(const std::map<EventKey, std::vector<double>>& diffs, int resamples, uint64_t seed) {
   PairedInterval out;
   std::vector<const std::vector<double>*> events;
@@ -207,39 +228,26 @@ cv::Mat PerFramePlot(const TransitionSuiteResult& result, TransitionKind kind, i
 
 std::string TransitionSummaryTable(const TransitionSuiteResult& result, bool tune) {
   const std::vector<TransitionMethod> methods = MethodsOf(result);
-  std::map<std::pair<TransitionKind, int>, std::map<TransitionMethod, std::pair<double, int>>> cells;
+  std::map<std::pair<TransitionKind, int>, std::map<TransitionMethod, Mean>> cells;  // (kind, N) -> method
   for (const TransitionSuiteRow& r : result.rows) {
-    if (r.tune != tune) continue;
-    auto& cell = cells[{r.kind, r.frames}][r.method];
-    cell.first += r.measures.eq23_root_aligned_mean_mm;
-    cell.second += 1;
+    if (r.tune == tune) cells[{r.kind, r.frames}][r.method].Add(r.measures.eq23_root_aligned_mean_mm);
   }
   if (cells.empty()) return "";
   std::ostringstream table;
-  table << "| kind | N | cases |";
-  for (TransitionMethod m : methods) table << ' ' << Name(m) << " |";
-  table << "\n|---|---|---|";
-  for (size_t i = 0; i < methods.size(); ++i) table << "---|";
-  table << '\n';
-  char number[32];
+  table << HeaderRow({"kind", "N", "cases"}, methods);
   for (const auto& [key, by_method] : cells) {
     // The lowest of the methods that generate from A and B alone (the oracle sees the truth).
     double best = 1e300;
-    for (const auto& [m, v] : by_method) {
-      if (m != TransitionMethod::kOracle) best = std::min(best, v.first / v.second);
+    for (const auto& [m, mean] : by_method) {
+      if (m != TransitionMethod::kOracle) best = std::min(best, mean.value());
     }
-    table << "| " << TransitionKindName(key.first) << " | " << key.second << " | " << by_method.begin()->second.second
+    table << "| " << TransitionKindName(key.first) << " | " << key.second << " | " << by_method.begin()->second.n
           << " |";
     for (TransitionMethod m : methods) {
       const auto it = by_method.find(m);
-      if (it == by_method.end()) {
-        table << " - |";
-        continue;
-      }
-      const double mean = it->second.first / it->second.second;
-      std::snprintf(number, sizeof number, "%.1f", mean);
-      const bool bold = m != TransitionMethod::kOracle && mean == best;
-      table << ' ' << (bold ? "**" : "") << number << (bold ? "**" : "") << " |";
+      const bool bold = it != by_method.end() && m != TransitionMethod::kOracle && it->second.value() == best;
+      table << ' ' << (bold ? "**" : "") << (it == by_method.end() ? "-" : Format("%.1f", it->second.value()))
+            << (bold ? "**" : "") << " |";
     }
     table << '\n';
   }
@@ -248,37 +256,21 @@ std::string TransitionSummaryTable(const TransitionSuiteResult& result, bool tun
 
 std::string FootSkateTable(const TransitionSuiteResult& result, bool tune) {
   const std::vector<TransitionMethod> methods = MethodsOf(result);
-  std::map<int, std::map<TransitionMethod, std::pair<double, int>>> cells;  // N -> method -> (sum, count)
-  std::map<int, std::pair<double, int>> truth;
+  std::map<int, std::map<TransitionMethod, Mean>> cells;  // N -> method
+  std::map<int, Mean> truth;                              // N: the truth's own, once per case
   for (const TransitionSuiteRow& r : result.rows) {
     if (r.tune != tune) continue;
-    auto& cell = cells[r.frames][r.method];
-    cell.first += r.measures.foot_skate_mps;
-    cell.second += 1;
-    if (r.method == methods.front()) {
-      truth[r.frames].first += r.measures.true_foot_skate_mps;
-      truth[r.frames].second += 1;
-    }
+    cells[r.frames][r.method].Add(r.measures.foot_skate_mps);
+    if (r.method == methods.front()) truth[r.frames].Add(r.measures.true_foot_skate_mps);
   }
   if (cells.empty()) return "";
   std::ostringstream table;
-  table << "| N | truth |";
-  for (TransitionMethod m : methods) table << ' ' << Name(m) << " |";
-  table << "\n|---|---|";
-  for (size_t i = 0; i < methods.size(); ++i) table << "---|";
-  table << '\n';
-  char number[32];
+  table << HeaderRow({"N", "truth"}, methods);
   for (const auto& [n, by_method] : cells) {
-    std::snprintf(number, sizeof number, "%.2f", truth[n].first / std::max(1, truth[n].second));
-    table << "| " << n << " | " << number << " |";
+    table << "| " << n << " | " << Format("%.2f", truth[n].value()) << " |";
     for (TransitionMethod m : methods) {
       const auto it = by_method.find(m);
-      if (it == by_method.end()) {
-        table << " - |";
-        continue;
-      }
-      std::snprintf(number, sizeof number, "%.2f", it->second.first / it->second.second);
-      table << ' ' << number << " |";
+      table << ' ' << (it == by_method.end() ? "-" : Format("%.2f", it->second.value())) << " |";
     }
     table << '\n';
   }
