@@ -137,17 +137,14 @@ MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput
     transition_options.retrain = options.method == TransitionMethod::kLsopaRetrained;
     Eigen::MatrixXd truth_poses;
     if (truth) {
-      // The truth as the model would have to produce it: with the headings the output uses.
+      // The truth as the model would have to produce it: with the headings the output uses,
+      // each channel on the unwrapped motions' branch (within 180 degrees of A's end).
       truth_poses.resize(n, layout.NumChannels());
+      Eigen::RowVectorXd pose(layout.NumChannels());
       for (int i = 0; i < n; ++i) {
-        Eigen::RowVectorXd pose(layout.NumChannels());
         layout.FromFrame(truth->row(i).data(), heading_at(i), pose.data());
-        truth_poses.row(i) = pose;
-      }
-      // On the branch of the unwrapped motions: each channel within 180 degrees of A's end.
-      for (int i = 0; i < n; ++i) {
-        for (Eigen::Index c = 0; c < truth_poses.cols(); ++c) {
-          truth_poses(i, c) = poses(t - 1, c) + WrapDegrees(truth_poses(i, c) - poses(t - 1, c));
+        for (Eigen::Index c = 0; c < pose.size(); ++c) {
+          truth_poses(i, c) = poses(t - 1, c) + WrapDegrees(pose(c) - poses(t - 1, c));
         }
       }
     }
