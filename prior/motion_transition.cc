@@ -4,6 +4,7 @@
 #include <cmath>
 #include <span>
 
+#include "io/enum_name.h"
 #include "io/error.h"
 #include "io/gait_pose.h"
 #include "io/rotation.h"
@@ -16,12 +17,7 @@ namespace {
 // Every k-th frame, k = rate / fps; A's selection ends on its last frame, B's starts on
 // its first.
 RowMatrixXd Resample(const MotionInput& in, double fps, bool end_aligned) {
-  const double ratio = in.motion.frames_per_second / fps;
-  const int k = static_cast<int>(std::lround(ratio));
-  if (k < 1 || std::abs(ratio - k) > 1e-6) {
-    ThrowInputError(in.source, "is at " + FormatShortest(in.motion.frames_per_second) +
-                                   " frames/s, not a whole multiple of " + FormatShortest(fps));
-  }
+  const int k = ResampleStep(in.motion.frames_per_second, fps, in.source);
   const int n = in.motion.NumFrames(), count = (n + k - 1) / k;
   if (count < 3) {
     ThrowInputError(in.source, "has " + std::to_string(n) + " frames, " + std::to_string(count) + " at " +
@@ -65,15 +61,21 @@ std::string_view TransitionMethodName(TransitionMethod method) {
 }
 
 bool ParseTransitionMethod(std::string_view name, TransitionMethod* method) {
-  for (TransitionMethod m : {TransitionMethod::kLsopa, TransitionMethod::kLinear, TransitionMethod::kRandom,
-                             TransitionMethod::kSlerp, TransitionMethod::kHold, TransitionMethod::kOracle,
-                             TransitionMethod::kLsopaRetrained}) {
-    if (name == TransitionMethodName(m)) {
-      *method = m;
-      return true;
-    }
+  return ParseByName(name,
+                     {TransitionMethod::kLsopa, TransitionMethod::kLinear, TransitionMethod::kRandom,
+                      TransitionMethod::kSlerp, TransitionMethod::kHold, TransitionMethod::kOracle,
+                      TransitionMethod::kLsopaRetrained},
+                     TransitionMethodName, method);
+}
+
+int ResampleStep(double frames_per_second, double target_fps, const std::string& source) {
+  const double ratio = frames_per_second / target_fps;
+  const int k = static_cast<int>(std::lround(ratio));
+  if (k < 1 || std::abs(ratio - k) > 1e-6) {
+    ThrowInputError(source, "is at " + FormatShortest(frames_per_second) + " frames/s, not a whole multiple of " +
+                                FormatShortest(target_fps));
   }
-  return false;
+  return k;
 }
 
 MotionTransitionResult TransitionBetween(const MotionInput& a, const MotionInput& b,

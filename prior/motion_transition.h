@@ -37,6 +37,10 @@ enum class TransitionMethod { kLsopa, kLinear, kRandom, kSlerp, kHold, kOracle, 
 std::string_view TransitionMethodName(TransitionMethod method);
 bool ParseTransitionMethod(std::string_view name, TransitionMethod* method);
 
+// k such that every k-th frame of a motion at `frames_per_second` is one at `target_fps`;
+// InputError naming `source` when the rate is not a whole multiple.
+int ResampleStep(double frames_per_second, double target_fps, const std::string& source);
+
 struct MotionTransitionOptions {
   TransitionMethod method = TransitionMethod::kLsopa;
   TransitionOptions transition;     // N, l, theta, RI's seed, the GPDM's iterations

@@ -94,11 +94,8 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
   TransitionSuiteResult result;
   for (const TransitionEvent& event : events) {
     const Trial trial = ReadTrial(event, data_root, options.rules);
-    const double ratio = trial.whole.motion.frames_per_second / options.transition.frames_per_second;
-    const int step = static_cast<int>(std::lround(ratio));
-    if (step < 1 || std::abs(ratio - step) > 1e-6) {
-      ThrowInputError(trial.whole.source, "its rate is not a whole multiple of the transition's");
-    }
+    const int step =
+        ResampleStep(trial.whole.motion.frames_per_second, options.transition.frames_per_second, trial.whole.source);
     const Skeleton& skeleton = trial.whole.skeleton;
     const std::vector<int> feet = skeleton.FootBones();
     const Kinematics kinematics(skeleton);
@@ -168,8 +165,8 @@ TransitionSuiteResult RunTransitionSuite(const std::vector<TransitionEvent>& eve
             const TransitionMeasures m = MeasureTransition(skeleton, window.motion.values, generated.motion.values, measure);
             Accumulate(&row.measures, m, 1.0 / seeds);
             row.seconds += generated.seconds / seeds;
-          row.retrain_change_deg = generated.retrain_change_deg;
-          row.retrain_latent_shift = generated.retrain_latent_shift;
+            row.retrain_change_deg = generated.retrain_change_deg;
+            row.retrain_latent_shift = generated.retrain_latent_shift;
             eq23.push_back(m.eq23_root_aligned_mean_mm);
             if (strip && seed == 1) {
               result.strips.back().motions.emplace_back(

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <sstream>
 #include <thread>
@@ -57,6 +56,20 @@ struct EvalArguments {
   double max_angle = LatentTransitionOptions{}.max_angle_deg;
 };
 
+// Comma-separated items of an option, each parsed by `parse` (false: refused, naming it).
+template <typename T, typename Parse>
+std::vector<T> ParseList(const std::string& text, const std::string& option, const std::string& expected, Parse parse) {
+  std::vector<T> items;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    T value{};
+    if (!parse(item, &value)) ThrowInputError(option, "'" + item + "' is not " + expected);
+    items.push_back(value);
+  }
+  if (items.empty()) ThrowInputError(option, "expected " + expected + ", comma-separated");
+  return items;
+}
+
 std::vector<bool> AdaptModes(const std::string& adapt) {  // none, posture, both
   std::vector<bool> modes;
   if (adapt != "posture") modes.push_back(false);
@@ -72,13 +85,8 @@ void RunLoso(const EvalArguments& a) {
   if (!a.task.empty()) ThrowInputError("--task", "--suite loso validates interpolation at s = 1; give no --task");
   if (a.out.empty()) ThrowInputError("--suite loso", "needs --out DIR for the CSV and the fold models");
   LosoOptions options;
-  options.kinds.clear();
-  std::stringstream list(a.kinds);
-  for (std::string name; std::getline(list, name, ',');) {
-    ModelKind kind;
-    if (!ParseModelKind(name, &kind)) ThrowInputError("--kinds " + a.kinds, "'" + name + "' is not one of " + ModelKindList());
-    options.kinds.push_back(kind);
-  }
+  options.kinds = ParseList<ModelKind>(a.kinds, "--kinds", "a model kind (" + ModelKindList() + ")",
+                                      [](const std::string& t, ModelKind* k) { return ParseModelKind(t, k); });
   options.adapt = AdaptModes(a.adapt);
   options.max_trials_per_subject = a.max_per_subject;
   options.max_training_seconds = a.max_time;
@@ -152,20 +160,6 @@ void RunLoso(const EvalArguments& a) {
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
-// Comma-separated items of an option, each parsed by `parse` (false: refused, naming it).
-template <typename T, typename Parse>
-std::vector<T> ParseList(const std::string& text, const std::string& option, const std::string& expected, Parse parse) {
-  std::vector<T> items;
-  std::istringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    T value{};
-    if (!parse(item, &value)) ThrowInputError(option, "'" + item + "' is not " + expected);
-    items.push_back(value);
-  }
-  if (items.empty()) ThrowInputError(option, "give at least one of " + expected);
-  return items;
-}
-
 // `jgpm eval --suite transitions`: every event x shift x N x method of the event list.
 // OUT/transitions.csv (one row per case and method), per_frame.csv, intervals.csv (paired
 // bootstrap of LSOPA against each other method), plots/KIND-N.png (mean error per
@@ -175,7 +169,7 @@ void RunTransitions(const EvalArguments& a) {
   if (!a.models.empty() || !a.task.empty()) ThrowInputError("--suite transitions", "takes no --model or --task");
   if (a.out.empty()) ThrowInputError("--suite transitions", "needs --out DIR for the CSV and the strips");
   TransitionSuiteOptions options;
-  options.methods = ParseList<TransitionMethod>(a.methods, "--methods", "lsopa, li, ri, slerp, hold, oracle or lsopa-rt",
+  options.methods = ParseList<TransitionMethod>(a.methods, "--methods", "a method (lsopa, li, ri, slerp, hold, oracle or lsopa-rt)",
                                                 [](const std::string& t, TransitionMethod* m) {
                                                   return ParseTransitionMethod(t, m);
                                                 });
@@ -208,14 +202,14 @@ void RunTransitions(const EvalArguments& a) {
   OutputBatch batch;
   batch.Add(out / "transitions.csv", TransitionSuiteCsv(result));
   batch.Add(out / "per_frame.csv", TransitionPerFrameCsv(result));
-  std::vector<PairedInterval> intervals;
-  for (const bool tune : {false, true}) {
-    for (PairedInterval p : LsopaIntervals(result, tune)) {
-      if (tune) p.scope = "tuning " + p.scope;
-      intervals.push_back(p);
-    }
+  // The bootstrap once per event set: reported (tune = false), then tuning.
+  const std::vector<PairedInterval> intervals[2] = {LsopaIntervals(result, false), LsopaIntervals(result, true)};
+  std::vector<PairedInterval> all = intervals[0];
+  for (PairedInterval p : intervals[1]) {
+    p.scope = "tuning " + p.scope;
+    all.push_back(p);
   }
-  batch.Add(out / "intervals.csv", PairedIntervalsCsv(intervals));
+  batch.Add(out / "intervals.csv", PairedIntervalsCsv(all));
   for (const TransitionStrip& s : result.strips) {
     std::vector<cv::Mat> rows;
     for (const auto& [name, motion] : s.motions) {
@@ -249,7 +243,7 @@ void RunTransitions(const EvalArguments& a) {
     std::printf("foot skating (m/s, horizontal foot speed within 2.5 cm of the floor), mean over the cases:\n%s",
                 FootSkateTable(result, tune).c_str());
     bool header = false;
-    for (const PairedInterval& p : LsopaIntervals(result, tune)) {
+    for (const PairedInterval& p : intervals[tune]) {
       if (p.scope != "all") continue;
       if (!header) {
         std::printf("LSOPA minus each method, mean and 95%% paired bootstrap interval (mm), all %s cases:\n",
