@@ -65,9 +65,7 @@ SilhouetteLikelihood::Workspace SilhouetteLikelihood::NewWorkspace() const {
 }
 
 CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::Rect& region) const {
-  CameraObservation o(mask, options_.truncation_px, options_.max_hole_px);
-  o.SetRegion(region);
-  return o;
+  return CameraObservation(mask, region, options_.truncation_px, options_.max_hole_px);
 }
 
 double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,

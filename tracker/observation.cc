@@ -1,49 +1,50 @@
 #include "tracker/observation.h"
 
+#include <cmath>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
 namespace jgpm {
 
-CameraObservation::CameraObservation(const cv::Mat& mask, double truncation_px, int max_hole_px)
+CameraObservation::CameraObservation(const cv::Mat& mask, cv::Rect region, double truncation_px, int max_hole_px)
     : mask_(mask), truncation_px_(truncation_px) {
   if (mask_.empty()) return;
+  const cv::Rect image(0, 0, mask_.cols, mask_.rows);
+  region_ = region & image;
+  foreground_ = cv::countNonZero(mask_);
+  if (region_.empty()) return;
+  const int pad = static_cast<int>(std::ceil(truncation_px)) + 2;
+  window_ = cv::Rect(region_.x - pad, region_.y - pad, region_.width + 2 * pad, region_.height + 2 * pad) & image;
   if (max_hole_px > 0) {
-    // Background components that do not touch the border and are small are holes.
+    // Background components that do not touch the window's border and are small are holes.
     cv::Mat labels, stats, centroids;
-    const int n = cv::connectedComponentsWithStats(mask_ == 0, labels, stats, centroids, 4, CV_32S);
+    const int n = cv::connectedComponentsWithStats(mask_(window_) == 0, labels, stats, centroids, 4, CV_32S);
     std::vector<uint8_t> fill(n, 0);
     bool any = false;
     for (int l = 1; l < n; ++l) {
       const int x = stats.at<int>(l, cv::CC_STAT_LEFT), y = stats.at<int>(l, cv::CC_STAT_TOP);
       const int w = stats.at<int>(l, cv::CC_STAT_WIDTH), h = stats.at<int>(l, cv::CC_STAT_HEIGHT);
-      const bool border = x == 0 || y == 0 || x + w == mask_.cols || y + h == mask_.rows;
+      const bool border = x == 0 || y == 0 || x + w == window_.width || y + h == window_.height;
       if (!border && stats.at<int>(l, cv::CC_STAT_AREA) < max_hole_px) fill[l] = 1, any = true;
     }
     if (any) {
-      cv::Mat filled = mask_.clone();
+      mask_ = mask_.clone();  // the caller's frame stays as it was
+      cv::Mat filled = mask_(window_);
       for (int v = 0; v < filled.rows; ++v) {
         const int* label = labels.ptr<int>(v);
         uint8_t* out = filled.ptr<uint8_t>(v);
         for (int u = 0; u < filled.cols; ++u)
           if (fill[label[u]]) out[u] = 255;
       }
-      mask_ = filled;
     }
   }
-  width_ = mask_.cols;
-  height_ = mask_.rows;
-  cv::Mat binary = mask_ != 0;
-  cv::integral(binary / 255, integral_, CV_32S);
-  if (cv::countNonZero(binary) == 0) {
-    distance_ = cv::Mat(mask_.size(), CV_32F, cv::Scalar(truncation_px));
-    distance_row_ = distance_.ptr<float>(0);
-    stride_ = static_cast<int>(distance_.step1());
-    return;
-  }
+  region_bits_ = BitMask::FromMat(mask_, region_);
+  region_bits_.DilateInto(&region_grown_);
+  region_count_ = region_bits_.Count();
+  const cv::Mat background = mask_(window_) == 0;
+  if (cv::countNonZero(mask_(window_)) == 0) return;  // no foreground near
   // distanceTransform measures to the nearest zero pixel: zeros where the foreground is.
-  cv::Mat background = binary == 0;
   cv::distanceTransform(background, distance_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   // Distances are to pixel centres: a point on the foreground's edge is half a pixel (a
   // diagonal one 0.7) from the nearest, and costs nothing.
@@ -52,27 +53,8 @@ CameraObservation::CameraObservation(const cv::Mat& mask, double truncation_px, 
   cv::min(distance_, truncation_px, distance_);
   distance_row_ = distance_.ptr<float>(0);
   stride_ = static_cast<int>(distance_.step1());
-}
-
-void CameraObservation::SetRegion(cv::Rect region) {
-  region_ = mask_.empty() ? cv::Rect() : region & cv::Rect(0, 0, mask_.cols, mask_.rows);
-  if (mask_.empty()) return;
-  region_bits_ = BitMask::FromMat(mask_, region_);
-  region_bits_.DilateInto(&region_grown_);
-  region_count_ = ForegroundIn(region_);
-}
-
-int CameraObservation::ForegroundIn(cv::Rect box) const {
-  if (mask_.empty()) return 0;
-  box &= cv::Rect(0, 0, mask_.cols, mask_.rows);
-  if (box.empty()) return 0;
-  return integral_.at<int>(box.y + box.height, box.x + box.width) - integral_.at<int>(box.y, box.x + box.width) -
-         integral_.at<int>(box.y + box.height, box.x) + integral_.at<int>(box.y, box.x);
-}
-
-float CameraObservation::DistanceToForeground(float u, float v) const {
-  if (!(u >= -0.5f && v >= -0.5f && u < width_ - 0.5f && v < height_ - 0.5f)) return static_cast<float>(truncation_px_);
-  return distance_row_[static_cast<int>(v + 0.5f) * stride_ + static_cast<int>(u + 0.5f)];
+  window_x_ = static_cast<float>(window_.x), window_y_ = static_cast<float>(window_.y);
+  width_ = window_.width, height_ = window_.height;
 }
 
 }  // namespace jgpm
