@@ -94,6 +94,13 @@ Eigen::VectorXd GaitModel::Variances(const Eigen::MatrixXd& xs) const {
   return variances;
 }
 
+double GaitModel::VarianceBound(const Eigen::Vector3d& x, int) const {
+  Eigen::VectorXd pose;
+  double variance = 0;
+  Predict(x, &pose, &variance);
+  return variance;
+}
+
 Eigen::Vector3d GaitModel::NextLatent(const Eigen::Vector3d& x, double* variance, Eigen::Matrix3d* jacobian) const {
   if (variance) *variance = 0;
   if (jacobian) jacobian->setIdentity();

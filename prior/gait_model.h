@@ -111,6 +111,11 @@ class GaitModel {
 
   // Conveniences over the batches (they allocate). Predictive variances of the rows of xs.
   virtual Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const;
+  // An upper bound on Predict's variance at x, cheap where the exact one is O(N^2): GP
+  // models condition on the `neighbours` training points nearest to x alone (a GP
+  // conditioned on fewer observations never has a lower variance), O(neighbours^3); equal
+  // to the exact variance when neighbours >= N, and for the other models.
+  virtual double VarianceBound(const Eigen::Vector3d& x, int neighbours) const;
   // Mean poses (T x D) of the rows of xs; with `jacobians`, also d pose / d x_d for each
   // latent dimension d (each T x D: row t holds the derivatives of pose t).
   virtual Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs,

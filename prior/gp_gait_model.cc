@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <nanoflann.hpp>
+
 #include "io/error.h"
 #include "prior/rbf_row.h"
 
@@ -22,6 +24,13 @@ const Eigen::VectorXd& CheckedLogBeta(const GaitModelData& data, const std::stri
 }
 
 }  // namespace
+
+struct GpGaitModel::Neighbours {
+  explicit Neighbours(const Eigen::MatrixXd& x) : tree(3, std::cref(x)) {}
+  nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixXd> tree;
+};
+
+GpGaitModel::~GpGaitModel() = default;
 
 GpGaitModel::GpGaitModel(GaitModelData data, const std::string& source)
     : GaitModel(std::move(data), source), kernel_(Kernel::Kind::kRbf, CheckedLogBeta(data_, source)) {
@@ -55,6 +64,7 @@ GpGaitModel::GpGaitModel(GaitModelData data, const std::string& source)
     b_ = dynamics_chol_.Solve(x_out);
   }
   Require(a_.allFinite() && b_.allFinite(), source, "the kernels' solutions are not finite");
+  neighbours_ = std::make_unique<Neighbours>(p.x);
 }
 
 void GpGaitModel::Predict(const Eigen::Vector3d& x, Eigen::VectorXd* pose_deg, double* variance) const {
@@ -116,6 +126,24 @@ Eigen::MatrixXd GpGaitModel::MeanPoses(const Eigen::MatrixXd& xs, std::array<Eig
     }
   }
   return poses;
+}
+
+double GpGaitModel::VarianceBound(const Eigen::Vector3d& x, int neighbours) const {
+  const Eigen::MatrixXd& xs = data_.params.x;
+  if (neighbours >= NumPoints()) return Variances(x.transpose())[0];
+  const int m = std::max(1, neighbours);
+  std::vector<Eigen::Index> index(m);
+  std::vector<double> distance2(m);
+  neighbours_->tree.index->knnSearch(x.data(), m, index.data(), distance2.data());
+  Eigen::MatrixXd subset(m, 3);
+  for (int i = 0; i < m; ++i) subset.row(i) = xs.row(index[i]);
+  // The subset's kernel with the full factor's jitter: more noise than the full model had
+  // (the factorisation may add jitter of its own) only raises the bound.
+  Eigen::MatrixXd k_ss = kernel_.Matrix(subset);
+  k_ss.diagonal().array() += chol_.jitter();
+  Cholesky chol;
+  if (!chol.Compute(k_ss)) return kernel_.Self(x);  // the prior's variance bounds it too
+  return std::max(0.0, kernel_.Self(x) - chol.HalfSolve(kernel_.Cross(subset, x)).squaredNorm());
 }
 
 Eigen::VectorXd GpGaitModel::Variances(const Eigen::MatrixXd& xs) const {

@@ -17,6 +17,7 @@ class GpGaitModel : public GaitModel {
   // InputError naming `source` for hyper-parameters of the wrong number or non-finite,
   // or kernels that cannot be factorised.
   GpGaitModel(GaitModelData data, const std::string& source);
+  ~GpGaitModel() override;
 
   void Predict(const Eigen::Vector3d& x, Eigen::VectorXd* pose_deg, double* variance) const override;
   double LogPrior(const Eigen::Vector3d& x, Eigen::Vector3d* gradient) const override;
@@ -30,6 +31,7 @@ class GpGaitModel : public GaitModel {
   void NextLatents(const Eigen::Ref<const Eigen::MatrixXd>& xs, Eigen::Ref<Eigen::MatrixXd> next,
                    ModelWorkspace* workspace) const override;
   Eigen::VectorXd Variances(const Eigen::MatrixXd& xs) const override;
+  double VarianceBound(const Eigen::Vector3d& x, int neighbours) const override;
   Eigen::MatrixXd MeanPoses(const Eigen::MatrixXd& xs, std::array<Eigen::MatrixXd, 3>* jacobians) const override;
 
  private:
@@ -40,6 +42,8 @@ class GpGaitModel : public GaitModel {
 
   Kernel kernel_;
   Cholesky chol_;
+  struct Neighbours;  // a k-d tree over the latent points (nanoflann)
+  std::unique_ptr<Neighbours> neighbours_;
   Eigen::MatrixXd a_;  // K^-1 Y
   std::unique_ptr<Kernel> dynamics_;
   Cholesky dynamics_chol_;

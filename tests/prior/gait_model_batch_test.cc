@@ -3,6 +3,7 @@
 // workspace has grown, and give the same results from several threads at once.
 #include <atomic>
 #include <cstdlib>
+#include <limits>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -136,6 +137,34 @@ TEST_P(GaitModelBatch, SameResultsFromManyThreads) {
   b.join();
   c.join();
   EXPECT_EQ(mismatches.load(), 0);
+}
+
+// The oracle is the exact variance: the bound from the nearest points is never below it,
+// equals it given every point, and tightens as more points are used (nested subsets: a GP
+// conditioned on more observations never has a higher variance). The subset has the full
+// factor's jitter, so it also holds for a model whose kernel needed jitter.
+TEST_P(GaitModelBatch, VarianceBoundIsAboveTheExactVarianceAndTightens) {
+  const GaitModel& model = Model(GetParam());
+  const Eigen::MatrixXd xs = Queries(model, 45);
+  const Eigen::VectorXd exact = model.Variances(xs);
+  double loose = 0;
+  for (int t = 0; t < xs.rows(); ++t) {
+    const Eigen::Vector3d x = xs.row(t).transpose();
+    double previous = std::numeric_limits<double>::infinity();
+    for (int m : {4, 16, 64}) {
+      const double bound = model.VarianceBound(x, m);
+      EXPECT_GE(bound, exact[t] - 1e-10) << "point " << t << ", " << m << " neighbours";
+      EXPECT_LE(bound, previous + 1e-10) << "point " << t << ", " << m << " neighbours";
+      previous = bound;
+      if (m == 4) loose = std::max(loose, bound - exact[t]);
+    }
+    EXPECT_NEAR(model.VarianceBound(x, model.NumPoints()), exact[t], 1e-12) << t;
+  }
+  // A bound that can fail: with few neighbours it is not the exact variance everywhere
+  // (except for models whose variance does not depend on the data near x).
+  if (GetParam() != ModelKind::kPca) {
+    EXPECT_GT(loose, 1e-6);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, GaitModelBatch,
