@@ -32,13 +32,7 @@ void ThreadPool::Run(int worker) {
       job = job_;
       n = n_;
     }
-    const int parts = size();
-    try {
-      (*job)(static_cast<int>(static_cast<long>(n) * worker / parts),
-             static_cast<int>(static_cast<long>(n) * (worker + 1) / parts), worker);
-    } catch (...) {
-      errors_[worker] = std::current_exception();
-    }
+    Work(*job, n, worker);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       if (--pending_ == 0) done_.notify_one();
@@ -46,9 +40,25 @@ void ThreadPool::Run(int worker) {
   }
 }
 
+void ThreadPool::Work(const std::function<void(int, int, int)>& fn, int n, int worker) {
+  try {
+    for (;;) {
+      const int begin = next_.fetch_add(chunk_, std::memory_order_relaxed);
+      if (begin >= n) return;
+      fn(begin, std::min(n, begin + chunk_), worker);
+    }
+  } catch (...) {
+    errors_[worker] = std::current_exception();
+  }
+}
+
 void ThreadPool::For(int n, const std::function<void(int begin, int end, int worker)>& fn) {
   std::fill(errors_.begin(), errors_.end(), nullptr);
   const int parts = size();
+  // Chunks of about a quarter of an even share: a worker whose items are cheap (bodies off
+  // screen draw nothing) takes more of them.
+  chunk_ = std::max(1, n / (4 * parts));
+  next_.store(0, std::memory_order_relaxed);
   if (parts > 1) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -59,11 +69,7 @@ void ThreadPool::For(int n, const std::function<void(int begin, int end, int wor
     }
     wake_.notify_all();
   }
-  try {
-    fn(0, static_cast<int>(static_cast<long>(n) / parts), 0);
-  } catch (...) {
-    errors_[0] = std::current_exception();
-  }
+  Work(fn, n, 0);
   if (parts > 1) {
     std::unique_lock<std::mutex> lock(mutex_);
     done_.wait(lock, [&] { return pending_ == 0; });

@@ -1,8 +1,10 @@
 // A fixed set of worker threads for the particle filter's per-particle work. Work is split
-// into contiguous ranges by index, one per worker, so which worker computes an item never
-// changes its result (each item's random numbers come from its own key, tracker/random.h).
+// into contiguous chunks taken in turn by whichever worker is free; which worker computes an
+// item never changes its result (each item's random numbers come from its own key,
+// tracker/random.h, and its output has its own slot), only which scratch it uses.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <mutex>
@@ -20,12 +22,14 @@ class ThreadPool {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   int size() const { return static_cast<int>(workers_.size()) + 1; }
-  // Calls fn(begin, end, worker) for `size()` contiguous ranges covering [0, n) and waits
-  // for all. An exception in any range is rethrown here (the first range's first).
+  // Calls fn(begin, end, worker) for contiguous chunks covering [0, n) (each worker's calls
+  // one at a time) and waits for all. An exception is rethrown here (the lowest worker's);
+  // the worker that threw takes no more chunks.
   void For(int n, const std::function<void(int begin, int end, int worker)>& fn);
 
  private:
   void Run(int worker);
+  void Work(const std::function<void(int, int, int)>& fn, int n, int worker);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -34,6 +38,8 @@ class ThreadPool {
   int n_ = 0;
   long generation_ = 0;
   int pending_ = 0;
+  int chunk_ = 1;
+  std::atomic<int> next_{0};
   bool stop_ = false;
   std::vector<std::exception_ptr> errors_;
 };
