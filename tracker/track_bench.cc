@@ -20,37 +20,6 @@ namespace jgpm {
 namespace fs = std::filesystem;
 namespace {
 
-// The model's best poses for the clip's true poses, root-relative on the subject's skeleton:
-// (14-joint, 17-joint) mean error, mm; (-1, -1) when the source trial cannot be read.
-std::pair<double, double> Floor(const GaitModel& model, const ClipGroundTruth& truth, int frames) {
-  std::error_code ec;
-  if (!fs::exists(truth.source_asf, ec) || !fs::exists(truth.source_amc, ec)) return {-1, -1};
-  const Skeleton skeleton = ReadAsf(truth.source_asf);
-  const Motion motion = ReadAmc(truth.source_amc, skeleton);
-  const PosePlacer placer(skeleton);
-  const GaitPoseLayout& layout = placer.layout();
-  if (layout.channel_names() != model.data().set.channel_names) return {-1, -1};
-  PoseObservations observed;
-  observed.poses_deg.resize(frames, layout.NumChannels());
-  for (int k = 0; k < frames; ++k) {
-    const double* frame = motion.Frame(std::min(truth.frames[k].source_frame, motion.NumFrames() - 1));
-    Eigen::VectorXd pose(layout.NumChannels());
-    layout.FromFrame(frame, HeadingOf(layout.RootRotation(frame)), pose.data());
-    observed.poses_deg.row(k) = pose.transpose();
-  }
-  const InferenceResult best = InferLatentSequence(model, observed);
-  std::vector<Eigen::Matrix3Xd> estimate(frames), target(frames);
-  double foot = 0;
-  for (int k = 0; k < frames; ++k) {
-    const Eigen::VectorXd a = best.poses_deg.row(k).transpose(), b = observed.poses_deg.row(k).transpose();
-    placer.Relative(a.data(), &estimate[k], &foot);
-    placer.Relative(b.data(), &target[k], &foot);
-  }
-  const std::vector<std::string> names = skeleton.BoneNames();
-  return {CompareTracks(estimate, names, target, names, Bodytrack14()).absolute_mm,
-          CompareTracks(estimate, names, target, names, Gait17()).absolute_mm};
-}
-
 // Accumulates seed runs into one row.
 void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, const ClipGroundTruth& truth) {
   const RunErrors& e = *r.errors;
@@ -114,6 +83,49 @@ void Text(cv::Mat& image, const std::string& text, cv::Point at, double scale = 
 
 }  // namespace
 
+PriorFloors ModelFloors(const GaitModel& model, const ClipGroundTruth& truth, int frames) {
+  std::error_code ec;
+  if (!fs::exists(truth.source_asf, ec) || !fs::exists(truth.source_amc, ec)) return {};
+  const Skeleton skeleton = ReadAsf(truth.source_asf);
+  const Motion motion = ReadAmc(truth.source_amc, skeleton);
+  const PosePlacer placer(skeleton), model_placer(model.skeleton());
+  const GaitPoseLayout& layout = placer.layout();
+  if (layout.channel_names() != model.data().set.channel_names) return {};
+  PoseObservations observed;
+  observed.poses_deg.resize(frames, layout.NumChannels());
+  for (int k = 0; k < frames; ++k) {
+    const double* frame = motion.Frame(std::min(truth.frames[k].source_frame, motion.NumFrames() - 1));
+    Eigen::VectorXd pose(layout.NumChannels());
+    layout.FromFrame(frame, HeadingOf(layout.RootRotation(frame)), pose.data());
+    observed.poses_deg.row(k) = pose.transpose();
+  }
+  const InferenceResult best = InferLatentSequence(model, observed);
+  std::vector<Eigen::Matrix3Xd> estimate(frames), on_model(frames), target(frames);
+  double foot = 0;
+  for (int k = 0; k < frames; ++k) {
+    const Eigen::VectorXd a = best.poses_deg.row(k).transpose(), b = observed.poses_deg.row(k).transpose();
+    placer.Relative(a.data(), &estimate[k], &foot);
+    model_placer.Relative(a.data(), &on_model[k], &foot);
+    placer.Relative(b.data(), &target[k], &foot);
+  }
+  const std::vector<std::string> names = skeleton.BoneNames(), model_names = model.skeleton().BoneNames();
+  PriorFloors floors;
+  floors.subject_bt14 = CompareTracks(estimate, names, target, names, Bodytrack14()).absolute_mm;
+  floors.subject_g17 = CompareTracks(estimate, names, target, names, Gait17()).absolute_mm;
+  // The best size in the tracker's range (ManifoldDynamics, tracker/manifold_state.h), to 0.5%.
+  for (int i = 0; i <= 110; ++i) {
+    const double size = (150 + i) / 200.0;  // 1 exactly among them
+    std::vector<Eigen::Matrix3Xd> scaled = on_model;
+    for (Eigen::Matrix3Xd& m : scaled) m *= size;
+    const double g17 = CompareTracks(scaled, model_names, target, names, Gait17()).absolute_mm;
+    if (floors.model_g17 < 0 || g17 < floors.model_g17) {
+      floors.model_g17 = g17;
+      floors.model_bt14 = CompareTracks(scaled, model_names, target, names, Bodytrack14()).absolute_mm;
+    }
+  }
+  return floors;
+}
+
 std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, const fs::path& folder,
                                          const TrackBenchOptions& options,
                                          const std::function<void(const TrackBenchRow&, int done, int total)>& progress) {
@@ -141,17 +153,18 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
     const ClipGroundTruth truth = ReadGroundTruth(ClipPaths{dir}.GroundTruth());
     const int frames = options.max_frames > 0 ? std::min<int>(options.max_frames, truth.frames.size())
                                               : static_cast<int>(truth.frames.size());
-    std::vector<std::pair<double, double>> floors(models.size());
-    for (size_t m = 0; m < models.size(); ++m) floors[m] = Floor(*models[m], truth, frames);
+    std::vector<PriorFloors> floors(models.size());
+    for (size_t m = 0; m < models.size(); ++m) floors[m] = ModelFloors(*models[m], truth, frames);
     for (const Method& method : methods) {
       TrackBenchRow row;
       row.clip = clip.name;
       row.model = Stem(options.models[method.model]);
       row.method = method.name;
       row.cameras = static_cast<int>(truth.cameras.size());
-      if (method.space == StateSpace::kModel) {
-        row.floor_bt14_root_mm = floors[method.model].first;
-        row.floor_g17_root_mm = floors[method.model].second;
+      if (method.space == StateSpace::kModel) {  // the floor on the skeleton tracked on
+        const PriorFloors& f = floors[method.model];
+        row.floor_bt14_root_mm = method.known_skeleton ? f.subject_bt14 : f.model_bt14;
+        row.floor_g17_root_mm = method.known_skeleton ? f.subject_g17 : f.model_g17;
       }
       for (int seed = 1; seed <= options.seeds; ++seed) {
         TrackJobOptions job;

@@ -4,8 +4,10 @@
 // 17 gait joints, with and without the joint-angle refinement, failure and leg-swap rates,
 // frames per second of filtering and likelihood evaluations per frame, averaged over seeds.
 // Beside each model, its floor: per frame the model's best pose for the true pose (sequence
-// inference, prior/inference.h, on the true gait poses), root-relative, on the subject's own
-// skeleton: tracker error / floor says how much is search and how much prior.
+// inference, prior/inference.h, on the true gait poses), root-relative, on the skeleton the
+// row tracks on (the subject's own for the known-skeleton runs; otherwise the model's, at
+// the size that fits best): tracker error / floor says how much is search and how much
+// prior and skeleton.
 #pragma once
 
 #include <filesystem>
@@ -25,8 +27,7 @@ struct TrackBenchOptions {
   bool joint_space = true;          // the classic baseline (on the first model's skeleton)
   bool no_latent_prior = true;      // the first model without p(x|M)
   bool known_skeleton = true;       // the first model on the subject's own skeleton (the
-                                    // clip's source ASF, as jgpm track --asf): what the
-                                    // floor assumes, so search / floor compares like with like
+                                    // clip's source ASF, as jgpm track --asf)
   bool from_video = true;           // the first model on masks computed from the clip's
                                     // videos by background subtraction, as for a recording
   int seeds = 2;
@@ -50,6 +51,19 @@ struct TrackBenchRow {
   std::vector<std::string> joints;
   std::vector<double> per_joint_mm, per_frame_mm;
 };
+
+// The model's best poses for the clip's first `frames` true poses (sequence inference on the
+// true gait poses), root-relative mean error (mm) against the truth on the subject's
+// skeleton: placed on the subject's skeleton (the floor of a tracker that knows it) and on
+// the model's skeleton at the size in the tracker's range that fits best (the floor of one
+// that estimates the size alone: CMU skeletons differ in bone directions and axes, so the
+// same angles put an arm 60-80 mm elsewhere). -1 when the source trial cannot be read or
+// its channels are not the model's.
+struct PriorFloors {
+  double subject_bt14 = -1, subject_g17 = -1;
+  double model_bt14 = -1, model_g17 = -1;
+};
+PriorFloors ModelFloors(const GaitModel& model, const ClipGroundTruth& truth, int frames);
 
 // Tracks every clip in `folder` (rendered: tracker/tracking_suite.h). `progress` (may be
 // empty) gets each finished row with the number done and the total.
