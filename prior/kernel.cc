@@ -66,4 +66,63 @@ void Kernel::AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g,
   (*dlog_params)[NumParams() - 1] += -noise_variance() * g.trace();
 }
 
+Eigen::MatrixXd Kernel::RbfCross(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const {
+  JGPM_CHECK(a.cols() == 3 && b.cols() == 3);
+  const int n = static_cast<int>(a.rows());
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, b.rows());
+  if (kind_ == Kind::kLinear) return k;
+  for (int j = 0; j < b.rows(); ++j) {
+    const Eigen::Vector3d q = b.row(j).transpose();
+    RbfRow(a.data(), n, q.data(), signal_variance(), inverse_width(), k.col(j).data());
+  }
+  return k;
+}
+
+Eigen::MatrixXd Kernel::CrossMatrix(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                                    const Eigen::MatrixXd& rbf) const {
+  Eigen::MatrixXd k = rbf;
+  if (kind_ != Kind::kRbf) k.noalias() += linear_variance() * a * b.transpose();
+  return k;
+}
+
+void Kernel::AddCrossGradient(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const Eigen::MatrixXd& g,
+                              const Eigen::MatrixXd& rbf, Eigen::MatrixXd* da, Eigen::MatrixXd* db,
+                              Eigen::VectorXd* dlog_params) const {
+  JGPM_CHECK(g.rows() == a.rows() && g.cols() == b.rows() && rbf.rows() == a.rows() && rbf.cols() == b.rows());
+  JGPM_CHECK(da->rows() == a.rows() && db->rows() == b.rows() && dlog_params->size() == NumParams());
+  if (kind_ != Kind::kLinear) {
+    // H = G o C_rbf; dC_ij/da_i = -b2 C_rbf_ij (a_i - b_j) = -dC_ij/db_j.
+    const Eigen::MatrixXd h = g.cwiseProduct(rbf);
+    const Eigen::VectorXd h_rows = h.rowwise().sum(), h_cols = h.colwise().sum().transpose();
+    const Eigen::MatrixXd hb = h * b;
+    const Eigen::MatrixXd hta = h.transpose() * a;
+    da->noalias() += -inverse_width() * (h_rows.asDiagonal() * a - hb);
+    db->noalias() += -inverse_width() * (h_cols.asDiagonal() * b - hta);
+    (*dlog_params)[0] += h.sum();
+    // d/d log b2 = -b2/2 sum_ij H_ij |a_i - b_j|^2.
+    (*dlog_params)[1] += -0.5 * inverse_width() *
+                         (h_rows.dot(a.rowwise().squaredNorm()) + h_cols.dot(b.rowwise().squaredNorm()) -
+                          2 * a.cwiseProduct(hb).sum());
+  }
+  if (kind_ != Kind::kRbf) {
+    const Eigen::MatrixXd gb = g * b;
+    da->noalias() += linear_variance() * gb;
+    db->noalias() += linear_variance() * g.transpose() * a;
+    (*dlog_params)[LinearIndex()] += linear_variance() * a.cwiseProduct(gb).sum();
+  }
+}
+
+double Kernel::SelfSum(const Eigen::MatrixXd& x) const {
+  return x.rows() * signal_variance() + linear_variance() * x.squaredNorm();
+}
+
+void Kernel::AddSelfSumGradient(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd* dx,
+                                Eigen::VectorXd* dlog_params) const {
+  if (kind_ != Kind::kLinear) (*dlog_params)[0] += weight * x.rows() * signal_variance();
+  if (kind_ != Kind::kRbf) {
+    *dx += 2 * weight * linear_variance() * x;
+    (*dlog_params)[LinearIndex()] += weight * linear_variance() * x.squaredNorm();
+  }
+}
+
 }  // namespace jgpm

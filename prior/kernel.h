@@ -45,6 +45,22 @@ class Kernel {
   // k(x*, x*) without noise.
   double Self(const Eigen::Vector3d& x_star) const;
 
+  // The RBF part of K(A, B) (|A| x |B|, zero for kLinear), and the whole of it without
+  // noise (A and B are different points, or inducing inputs).
+  Eigen::MatrixXd RbfCross(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const;
+  Eigen::MatrixXd CrossMatrix(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const Eigen::MatrixXd& rbf) const;
+  // Chain rule through C = CrossMatrix(a, b, rbf): given G = dL/dC (|A| x |B|, entries
+  // taken as independent; for K(A, A) pass A twice and both gradients land in the same
+  // matrix), adds dL/dA to `da`, dL/dB to `db` and dL/d(log params) to `dlog_params`.
+  void AddCrossGradient(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const Eigen::MatrixXd& g,
+                        const Eigen::MatrixXd& rbf, Eigen::MatrixXd* da, Eigen::MatrixXd* db,
+                        Eigen::VectorXd* dlog_params) const;
+  // sum_i k(x_i, x_i) without noise, and its gradient (added to `dx`, `dlog_params`,
+  // times `weight`).
+  double SelfSum(const Eigen::MatrixXd& x) const;
+  void AddSelfSumGradient(const Eigen::MatrixXd& x, double weight, Eigen::MatrixXd* dx,
+                          Eigen::VectorXd* dlog_params) const;
+
   // Chain rule through K: given G = dL/dK (symmetric, for K = Matrix(x)) and
   // rbf = RbfPart(x), adds dL/dX to `dx` and dL/d(log params) to `dlog_params`.
   void AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g, const Eigen::MatrixXd& rbf,

@@ -5,6 +5,7 @@
 #include "io/error.h"
 #include "prior/cholesky.h"
 #include "prior/kernel.h"
+#include "prior/sparse_gp.h"
 
 namespace jgpm {
 namespace {
@@ -41,7 +42,8 @@ bool GpTerm(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixX
 }  // namespace
 
 int GpParameters::Size() const {
-  return static_cast<int>(x.size() + log_beta.size() + log_alpha.size() + log_w.size());
+  return static_cast<int>(x.size() + log_beta.size() + log_alpha.size() + log_w.size() + u.size() +
+                          u_dynamics.size());
 }
 
 void GpParameters::Pack(double* out) const {
@@ -52,6 +54,11 @@ void GpParameters::Pack(double* out) const {
   for (const Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
     for (int k = 0; k < v->size(); ++k) *out++ = (*v)[k];
   }
+  for (const Eigen::MatrixXd* m : {&u, &u_dynamics}) {
+    for (int i = 0; i < m->rows(); ++i) {
+      for (int d = 0; d < m->cols(); ++d) *out++ = (*m)(i, d);
+    }
+  }
 }
 
 void GpParameters::Unpack(const double* in) {
@@ -61,6 +68,11 @@ void GpParameters::Unpack(const double* in) {
   for (Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
     for (int k = 0; k < v->size(); ++k) (*v)[k] = *in++;
   }
+  for (Eigen::MatrixXd* m : {&u, &u_dynamics}) {
+    for (int i = 0; i < m->rows(); ++i) {
+      for (int d = 0; d < m->cols(); ++d) (*m)(i, d) = *in++;
+    }
+  }
 }
 
 GpParameters GpParameters::ZerosLike() const {
@@ -69,6 +81,8 @@ GpParameters GpParameters::ZerosLike() const {
   zero.log_beta = Eigen::VectorXd::Zero(log_beta.size());
   zero.log_alpha = Eigen::VectorXd::Zero(log_alpha.size());
   zero.log_w = Eigen::VectorXd::Zero(log_w.size());
+  zero.u = Eigen::MatrixXd::Zero(u.rows(), u.cols());
+  zero.u_dynamics = Eigen::MatrixXd::Zero(u_dynamics.rows(), u_dynamics.cols());
   return zero;
 }
 
@@ -96,6 +110,10 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   JGPM_CHECK(p.x.rows() == NumPoints() && p.x.cols() == 3 && p.log_beta.size() == 3);
   JGPM_CHECK(p.log_alpha.size() == (terms_.dynamics ? 4 : 0));
   JGPM_CHECK(p.log_w.size() == (terms_.channel_scales ? NumChannels() : 0));
+  JGPM_CHECK((p.u.size() == 0 || p.u.cols() == 3) && (p.u_dynamics.size() == 0 || p.u_dynamics.cols() == 3));
+  JGPM_CHECK(p.u_dynamics.size() == 0 || terms_.dynamics);
+  // Sparse terms are over all points (local learning's subsets are exact).
+  JGPM_CHECK((p.u.size() == 0 && p.u_dynamics.size() == 0) || subset.size() == static_cast<size_t>(NumPoints()));
   ObjectiveValue value;
   if (gradient) *gradient = p.ZerosLike();
   const int m = static_cast<int>(subset.size());
@@ -111,8 +129,8 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
     x.row(k) = p.x.row(subset[k]);
     z.row(k) = y_.row(subset[k]).cwiseProduct(w.transpose());
   }
-  if (!x.allFinite() || !z.allFinite()) {
-    value.why = "non-finite latent points, channel scales or data";
+  if (!x.allFinite() || !z.allFinite() || !p.u.allFinite() || !p.u_dynamics.allFinite()) {
+    value.why = "non-finite latent points, inducing inputs, channel scales or data";
     return value;
   }
   Eigen::MatrixXd dx = Eigen::MatrixXd::Zero(m, 3);
@@ -122,10 +140,13 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
     Eigen::MatrixXd a;
     Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
     const Kernel::Kind kind = terms_.linear_mapping ? Kernel::Kind::kLinear : Kernel::Kind::kRbf;
-    if (!GpTerm(Kernel(kind, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
-                gradient ? &dx : nullptr, &dbeta, &value.jitter, &value.why)) {
-      return value;
-    }
+    const bool ok =
+        p.u.size() ? SparseGpTerm(Kernel(kind, p.log_beta), x, p.u, z, 1.0, "mapping kernel", &value.mapping, &a,
+                                  gradient ? &dx : nullptr, gradient ? &gradient->u : nullptr, &dbeta,
+                                  &value.jitter, &value.why)
+                   : GpTerm(Kernel(kind, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
+                            gradient ? &dx : nullptr, &dbeta, &value.jitter, &value.why);
+    if (!ok) return value;
     value.mapping += -m * p.log_w.sum() + 0.5 * m * d * kLog2Pi;
     if (gradient) {
       gradient->log_beta += dbeta;
@@ -171,10 +192,14 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
       Eigen::MatrixXd b, dx_in = Eigen::MatrixXd::Zero(pairs, 3);
       Eigen::VectorXd dalpha = Eigen::VectorXd::Zero(4);
       double term;
-      if (!GpTerm(Kernel(Kernel::Kind::kRbfLinear, p.log_alpha), x_in, x_out, lambda, "dynamics kernel", &term,
-                  &b, gradient ? &dx_in : nullptr, &dalpha, &value.jitter, &value.why)) {
-        return value;
-      }
+      const Kernel dynamics_kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
+      const bool ok = p.u_dynamics.size()
+                          ? SparseGpTerm(dynamics_kernel, x_in, p.u_dynamics, x_out, lambda, "dynamics kernel", &term,
+                                         &b, gradient ? &dx_in : nullptr, gradient ? &gradient->u_dynamics : nullptr,
+                                         &dalpha, &value.jitter, &value.why)
+                          : GpTerm(dynamics_kernel, x_in, x_out, lambda, "dynamics kernel", &term, &b,
+                                   gradient ? &dx_in : nullptr, &dalpha, &value.jitter, &value.why);
+      if (!ok) return value;
       dynamics += term + 0.5 * pairs * 3 * kLog2Pi;
       if (gradient) {
         gradient->log_alpha += dalpha;

@@ -23,7 +23,9 @@
 //
 // Every term can be restricted to a subset of the points (topology-aware local
 // learning): the mapping and dynamics GPs are then built on the subset alone and points
-// outside it are held fixed.
+// outside it are held fixed. With inducing inputs in the parameters (sparse learning),
+// the mapping and dynamics terms are the variational bound of prior/sparse_gp.h instead,
+// over all points.
 #pragma once
 
 #include <string>
@@ -47,6 +49,9 @@ struct GpParameters {
   Eigen::VectorXd log_beta;   // 3: mapping kernel (b1, b2, b3)
   Eigen::VectorXd log_alpha;  // 4: dynamics kernel (a1..a4), empty without dynamics
   Eigen::VectorXd log_w;      // D: channel scales, empty without them
+  // Sparse learning (prior/sparse_gp.h): the inducing inputs of the mapping GP and of the
+  // dynamics GP (M x 3 each); empty: that GP is exact.
+  Eigen::MatrixXd u, u_dynamics;
 
   int Size() const;
   void Pack(double* out) const;

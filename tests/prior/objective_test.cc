@@ -1,5 +1,7 @@
 #include "prior/objective.h"
 
+#include <limits>
+#include <memory>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -180,6 +182,125 @@ TEST(Objective, DuplicateLatentPointsGiveFiniteValuesAndGradients) {
   EXPECT_FALSE(bad.ok);
   EXPECT_FALSE(bad.why.empty());
 }
+
+
+// --- Sparse learning (prior/sparse_gp.h).
+
+// The rows that are dynamics inputs (a next point in the same sequence), in order.
+std::vector<int> DynamicsInputs(const TrainingSet& set) {
+  std::vector<int> in;
+  for (int i = 0; i < set.NumPoints(); ++i)
+    if ((i + 1) % set.poses_per_gait != 0) in.push_back(i);
+  return in;
+}
+
+struct SparseProblem {
+  ModelSpec spec;
+  TrainingSet set;
+  Topology topology;
+  std::unique_ptr<GpObjective> objective;
+  GpParameters p;
+};
+
+SparseProblem MakeSparseProblem(ModelKind kind) {
+  SparseProblem s;
+  s.spec = SpecFor(kind, 4);
+  s.spec.terms.fixed_inverse_width = false;  // check those gradients too
+  s.spec.terms.fixed_dynamics_noise = false;
+  s.set = MakeTrainingSet(test::SyntheticGaitDataset(4, 6, 4), s.spec.layer_scales);
+  if (s.spec.topology) {
+    TopologyOptions options;
+    options.shape = s.spec.shape;
+    s.topology = MakeTopology(s.set, options);
+  }
+  s.objective = std::make_unique<GpObjective>(s.set.y, SequencesOf(s.set), s.spec.topology ? &s.topology : nullptr,
+                                              s.spec.terms);
+  s.p = RandomParameters(s.spec, s.set, s.spec.topology ? &s.topology : nullptr);
+  return s;
+}
+
+// Inducing inputs: every k-th latent point (of the dynamics inputs for the dynamics GP),
+// moved a little off them unless `exact`.
+void SetInducing(SparseProblem* s, int every, bool exact) {
+  std::mt19937 random(11);
+  std::normal_distribution<double> noise(0, exact ? 0.0 : 0.1);
+  auto pick = [&](const std::vector<int>& rows) {
+    std::vector<int> chosen;
+    for (size_t k = 0; k < rows.size(); k += every) chosen.push_back(rows[k]);
+    Eigen::MatrixXd u(chosen.size(), 3);
+    for (size_t k = 0; k < chosen.size(); ++k)
+      for (int d = 0; d < 3; ++d) u(k, d) = s->p.x(chosen[k], d) + noise(random);
+    return u;
+  };
+  std::vector<int> all(s->set.NumPoints());
+  for (int i = 0; i < s->set.NumPoints(); ++i) all[i] = i;
+  s->p.u = pick(all);
+  if (s->spec.terms.dynamics) s->p.u_dynamics = pick(DynamicsInputs(s->set));
+}
+
+class SparseObjective : public testing::TestWithParam<ModelKind> {};
+
+TEST_P(SparseObjective, GradientMatchesFiniteDifferencesInducingInputsIncluded) {
+  SparseProblem s = MakeSparseProblem(GetParam());
+  SetInducing(&s, 4, false);
+  std::vector<int> all(s.set.NumPoints());
+  for (int i = 0; i < s.set.NumPoints(); ++i) all[i] = i;
+  CheckAgainstFiniteDifferences(*s.objective, s.p, all);
+}
+
+// The oracle: inducing inputs at the latent points give the exact objective, and the
+// sparse gradients with respect to x and to its copies u add up to the exact gradient.
+TEST_P(SparseObjective, InducingInputsAtTheLatentPointsGiveTheExactObjective) {
+  SparseProblem s = MakeSparseProblem(GetParam());
+  GpParameters exact_gradient;
+  const ObjectiveValue exact = s.objective->Evaluate(s.p, &exact_gradient);
+  ASSERT_TRUE(exact.ok) << exact.why;
+  SetInducing(&s, 1, true);
+  GpParameters gradient;
+  const ObjectiveValue sparse = s.objective->Evaluate(s.p, &gradient);
+  ASSERT_TRUE(sparse.ok) << sparse.why;
+  EXPECT_NEAR(sparse.total, exact.total, 1e-9 * std::abs(exact.total));
+  Eigen::MatrixXd dx = gradient.x + gradient.u;
+  if (s.spec.terms.dynamics) {
+    const std::vector<int> in = DynamicsInputs(s.set);
+    for (size_t k = 0; k < in.size(); ++k) dx.row(in[k]) += gradient.u_dynamics.row(k);
+  }
+  const auto largest = [](const Eigen::MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; };
+  const double scale = largest(exact_gradient.x);
+  EXPECT_LT(largest(dx - exact_gradient.x), 1e-7 * scale);
+  EXPECT_LT(largest(gradient.log_beta - exact_gradient.log_beta), 1e-7 * scale);
+  EXPECT_LT(largest(gradient.log_alpha - exact_gradient.log_alpha), 1e-7 * scale);
+  EXPECT_LT(largest(gradient.log_w - exact_gradient.log_w), 1e-7 * scale);
+  std::cout << "objective exact " << exact.total << ", sparse " << sparse.total << ", jitter " << sparse.jitter
+            << "; largest gradient difference " << largest(dx - exact_gradient.x) << " of " << scale << "\n";
+}
+
+// A bound: above the exact objective with fewer inducing inputs, coming down to it as they
+// grow (nested sets of latent points).
+TEST_P(SparseObjective, BoundIsAboveTheExactObjectiveAndTightens) {
+  SparseProblem s = MakeSparseProblem(GetParam());
+  const double exact = s.objective->Evaluate(s.p, nullptr).total;
+  double previous = std::numeric_limits<double>::infinity();
+  for (int every : {8, 4, 2, 1}) {
+    SetInducing(&s, every, true);
+    const ObjectiveValue v = s.objective->Evaluate(s.p, nullptr);
+    ASSERT_TRUE(v.ok) << v.why;
+    EXPECT_GE(v.total, exact - 1e-6 * std::abs(exact)) << "every " << every;
+    EXPECT_LE(v.total, previous + 1e-9 * std::abs(exact)) << "every " << every;
+    if (every == 8) {
+      EXPECT_GT(v.total, exact + 1.0);  // a bound that is not the objective
+    }
+    previous = v.total;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, SparseObjective,
+                         testing::Values(ModelKind::kGplvm, ModelKind::kGpdm, ModelKind::kMljgpmTorus),
+                         [](const testing::TestParamInfo<ModelKind>& info) {
+                           std::string name(ModelKindName(info.param));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace jgpm
