@@ -53,8 +53,8 @@ class ObjectiveFunction : public ceres::FirstOrderFunction {
 
 class ProgressReporter : public ceres::IterationCallback {
  public:
-  ProgressReporter(const FullTrainingOptions& options, const ObjectiveFunction& function)
-      : options_(options), function_(function), start_(Clock::now()), last_report_(start_) {}
+  ProgressReporter(const FullTrainingOptions& options, const ObjectiveFunction& function, std::string stage)
+      : options_(options), function_(function), stage_(std::move(stage)), start_(Clock::now()), last_report_(start_) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
     const auto now = Clock::now();
@@ -65,7 +65,7 @@ class ProgressReporter : public ceres::IterationCallback {
          std::chrono::duration<double>(now - last_report_).count() >= options_.progress_interval_s)) {
       last_report_ = now;
       TrainingProgress p;
-      p.stage = "full";
+      p.stage = stage_;
       p.iteration = summary.iteration;
       p.max_iterations = options_.max_iterations;
       p.objective = summary.cost;
@@ -95,6 +95,7 @@ class ProgressReporter : public ceres::IterationCallback {
  private:
   const FullTrainingOptions& options_;
   const ObjectiveFunction& function_;
+  std::string stage_;
   Clock::time_point start_, last_report_;
   std::vector<double> history_;
 };
@@ -116,7 +117,8 @@ TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
   solver.gradient_tolerance = options.gradient_tolerance;
   solver.parameter_tolerance = 1e-12;
   solver.logging_type = ceres::SILENT;
-  ProgressReporter reporter(options, *function);
+  const bool sparse = params->u.size() > 0 || params->u_dynamics.size() > 0;
+  ProgressReporter reporter(options, *function, sparse ? "sparse" : "full");
   solver.callbacks.push_back(&reporter);
   solver.update_state_every_iteration = false;
 
@@ -125,7 +127,8 @@ TrainingSummary TrainFull(const GpObjective& objective, GpParameters* params,
   params->Unpack(x.data());
 
   TrainingSummary summary;
-  summary.learning = "full";
+  summary.learning = sparse ? "sparse" : "full";
+  summary.inducing = static_cast<int>(std::max(params->u.rows(), params->u_dynamics.rows()));
   summary.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
   summary.evaluations = function->evaluations_;
   summary.initial_objective = ceres_summary.initial_cost;

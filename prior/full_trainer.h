@@ -1,5 +1,6 @@
 // Full-batch MAP learning: L-BFGS (Ceres GradientProblemSolver) on the whole objective,
-// O(N^3) per evaluation.
+// O(N^3) per evaluation; or O(N M^2) when the parameters carry inducing inputs (sparse
+// learning, prior/sparse_gp.h), which are optimised with the rest.
 #pragma once
 
 #include "prior/objective.h"

@@ -86,6 +86,10 @@ json ModelJson(const GaitModelData& d) {
                       {"final_objective", r.final_objective},
                       {"max_jitter", r.max_jitter},
                       {"wall_seconds", r.wall_seconds}};
+  if (r.inducing > 0) {
+    model["summary"]["inducing"] = r.inducing;
+    model["summary"]["exact_objective"] = r.exact_objective;
+  }
   return model;
 }
 
@@ -207,6 +211,10 @@ std::unique_ptr<GaitModel> ParseModelFile(const std::string& text, const std::st
   d.summary.final_objective = in.Get<double>(r, "final_objective", w);
   d.summary.max_jitter = in.Get<double>(r, "max_jitter", w);
   d.summary.wall_seconds = in.Get<double>(r, "wall_seconds", w);
+  if (r.contains("inducing")) {  // sparse learning
+    d.summary.inducing = in.Get<int>(r, "inducing", w);
+    d.summary.exact_objective = in.Get<double>(r, "exact_objective", w);
+  }
   return GaitModel::Create(std::move(d), source);
 }
 

@@ -141,7 +141,7 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
     Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
     const Kernel::Kind kind = terms_.linear_mapping ? Kernel::Kind::kLinear : Kernel::Kind::kRbf;
     const bool ok =
-        p.u.size() ? SparseGpTerm(Kernel(kind, p.log_beta), x, p.u, z, 1.0, "mapping kernel", &value.mapping, &a,
+        p.u.size() ? SparseGpTerm(Kernel(kind, p.log_beta), x, p.u, z, 1.0, terms_.inducing_jitter, "mapping kernel", &value.mapping, &a,
                                   gradient ? &dx : nullptr, gradient ? &gradient->u : nullptr, &dbeta,
                                   &value.jitter, &value.why)
                    : GpTerm(Kernel(kind, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
@@ -194,7 +194,7 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
       double term;
       const Kernel dynamics_kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
       const bool ok = p.u_dynamics.size()
-                          ? SparseGpTerm(dynamics_kernel, x_in, p.u_dynamics, x_out, lambda, "dynamics kernel", &term,
+                          ? SparseGpTerm(dynamics_kernel, x_in, p.u_dynamics, x_out, lambda, terms_.inducing_jitter, "dynamics kernel", &term,
                                          &b, gradient ? &dx_in : nullptr, gradient ? &gradient->u_dynamics : nullptr,
                                          &dalpha, &value.jitter, &value.why)
                           : GpTerm(dynamics_kernel, x_in, x_out, lambda, "dynamics kernel", &term, &b,

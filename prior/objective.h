@@ -70,6 +70,7 @@ struct ObjectiveTerms {
   double scale_prior_width = 1e3; // kappa of p(W)
   bool fixed_inverse_width = true;  // hold b2 (see above)
   bool fixed_dynamics_noise = true; // hold a4 (see above)
+  double inducing_jitter = 1e-6;    // sparse learning: on K_uu's diagonal (prior/sparse_gp.h)
   // A test oracle, set by no model kind (GaitModel and model files know only the RBF):
   // the linear mapping kernel K = b1 X X^T + I / b3 (Kernel::Kind::kLinear), whose MAP
   // without other terms is PCA in closed form (Lawrence 2005). There b1 trades against

@@ -14,8 +14,9 @@
 //
 // Evaluated through the M x M matrix P = sigma^2 K_uu + K_un K_nu (Woodbury and the
 // determinant lemma): O(N M^2 + N M c) time, O(N (M + c)) memory; N x N is never formed.
-// K_uu has no noise: when inducing inputs come close it needs the Cholesky's adaptive
-// jitter, which is reported as the exact term's is.
+// K_uu has no noise: it gets `inducing_jitter` on its diagonal (ObjectiveTerms: 1e-6, as
+// GPflow's default; the data are normalised, so kernel variances are of order 1), and the
+// Cholesky's adaptive jitter beyond that if it still cannot be factorised (reported).
 #pragma once
 
 #include <string>
@@ -31,8 +32,8 @@ namespace jgpm {
 // weight * dL/dx to *dx, weight * dL/du to *du and weight * dL/d(log params) to
 // *dlog_params. False, with `why` naming the term, when a matrix cannot be factorised.
 bool SparseGpTerm(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& u,
-                  const Eigen::MatrixXd& z, double weight, const char* name, double* value, Eigen::MatrixXd* v,
-                  Eigen::MatrixXd* dx, Eigen::MatrixXd* du, Eigen::VectorXd* dlog_params, double* jitter,
-                  std::string* why);
+                  const Eigen::MatrixXd& z, double weight, double inducing_jitter, const char* name, double* value,
+                  Eigen::MatrixXd* v, Eigen::MatrixXd* dx, Eigen::MatrixXd* du, Eigen::VectorXd* dlog_params,
+                  double* jitter, std::string* why);
 
 }  // namespace jgpm

@@ -1,6 +1,7 @@
 #include "prior/train.h"
 
 #include <chrono>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -47,6 +48,7 @@ bool TrainingOptions::Check(std::string* why) const {
   const char* problem = nullptr;
   if (!(topology_sigma2 > 0)) problem = "topology sigma^2 must be > 0";
   else if (threads < 0) problem = "threads must be >= 0";
+  else if (learning == Learning::kSparse && inducing < 3) problem = "sparse learning needs at least 3 inducing inputs";
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr && local.Check(why);
 }
@@ -121,7 +123,37 @@ std::unique_ptr<GaitModel> TrainGaitModel(TrainingSet training_set, const std::s
 
   const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);
   const bool budget_set = options.budget.max_seconds > 0 || options.budget.interrupted;
-  if (options.learning == Learning::kFull) {
+  if (options.learning == Learning::kSparse) {
+    if (options.inducing > set.NumPoints()) {
+      ThrowInputError("training options", std::to_string(options.inducing) + " inducing inputs for " +
+                                              std::to_string(set.NumPoints()) + " training points; at most N");
+    }
+    // Inducing inputs start on the initial latent points (the topology prior's grid for the
+    // JGPM family), evenly spread over the rows, which run over layers, gaits and poses.
+    auto spread = [&](const std::vector<int>& rows) {
+      const int m = std::min<int>(options.inducing, static_cast<int>(rows.size()));
+      Eigen::MatrixXd u(m, 3);
+      for (int k = 0; k < m; ++k) u.row(k) = data.params.x.row(rows[static_cast<size_t>(k) * rows.size() / m]);
+      return u;
+    };
+    std::vector<int> all(set.NumPoints()), inputs;
+    for (int i = 0; i < set.NumPoints(); ++i) {
+      all[i] = i;
+      if ((i + 1) % set.poses_per_gait != 0) inputs.push_back(i);  // has a next pose in its cycle
+    }
+    data.params.u = spread(all);
+    if (spec.terms.dynamics) data.params.u_dynamics = spread(inputs);
+    FullTrainingOptions full = options.full;
+    if (options.progress) full.progress = options.progress;
+    if (budget_set) full.budget = options.budget;
+    data.learning = "sparse";
+    data.summary = TrainFull(objective, &data.params, full);
+    // The model keeps the latent points and hyper-parameters; its predictions are exact.
+    data.params.u.resize(0, 3);
+    data.params.u_dynamics.resize(0, 3);
+    const ObjectiveValue exact = objective.Evaluate(data.params, nullptr);
+    data.summary.exact_objective = exact.ok ? exact.total : std::nan("");
+  } else if (options.learning == Learning::kFull) {
     FullTrainingOptions full = options.full;
     if (options.progress) full.progress = options.progress;
     if (budget_set) full.budget = options.budget;

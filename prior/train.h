@@ -14,7 +14,9 @@
 
 namespace jgpm {
 
-enum class Learning { kFull, kLocal };
+// Full-batch (O(N^3) per iteration), topology-aware local (the paper's), or sparse: full-batch
+// on the inducing-point bound (prior/sparse_gp.h), O(N M^2).
+enum class Learning { kFull, kLocal, kSparse };
 
 struct TrainingOptions {
   ModelKind kind = ModelKind::kMljgpmTorus;
@@ -22,7 +24,8 @@ struct TrainingOptions {
   uint64_t seed = 1;                 // local learning's choice of reference points
   int threads = 0;                   // linear-algebra threads; 0: OpenBLAS's default
   double topology_sigma2 = 0.01;     // sigma^2 of the LLE topology energy
-  FullTrainingOptions full;
+  FullTrainingOptions full;           // full and sparse learning
+  int inducing = 100;                 // sparse learning: inducing inputs per GP (3..N)
   LocalTrainingOptions local;
   ProgressCallback progress;         // overrides full.progress and local.progress
   TrainingBudget budget;             // when set, overrides full.budget and local.budget

@@ -26,6 +26,11 @@ std::string TrainingSummary::BriefReport() const {
                 "%.1f s",
                 learning.c_str(), how.c_str(), iterations, initial_objective,
                 final_objective, max_jitter, wall_seconds);
+  if (inducing > 0) {
+    char exact[128];
+    std::snprintf(exact, sizeof(exact), "; %d inducing inputs, exact objective %.6g", inducing, exact_objective);
+    return line + std::string(exact);
+  }
   return line;
 }
 

@@ -10,7 +10,7 @@
 namespace jgpm {
 
 struct TrainingProgress {
-  std::string stage;          // "full" or "local"
+  std::string stage;          // "full", "local" or "sparse"
   int iteration = 0;          // L-BFGS iterations, or local steps
   int max_iterations = 0;
   double objective = 0;       // the full objective (local: at its last evaluation)
@@ -33,7 +33,7 @@ struct TrainingBudget {
 };
 
 struct TrainingSummary {
-  std::string learning;      // "full", "local" or "closed form" (PCA)
+  std::string learning;      // "full", "local", "sparse" or "closed form" (PCA)
   // A numerical failure still leaves the best parameters found before it.
   Termination termination = Termination::kNoConvergence;
   std::string message;       // detail from the optimiser
@@ -43,6 +43,10 @@ struct TrainingSummary {
   double final_objective = 0;
   double max_jitter = 0;
   double wall_seconds = 0;
+  // Sparse learning: inducing inputs per GP, and the exact objective of the learned
+  // parameters (final_objective is the bound's), comparable with full and local learning.
+  int inducing = 0;
+  double exact_objective = 0;
 
   bool usable() const { return termination != Termination::kNumericalFailure; }
   // One line: how it ended, iterations, final objective, wall time.

@@ -48,6 +48,21 @@ TEST(ModelFile, LoadsBackToIdenticalPredictions) {
   }
 }
 
+// A sparse-learned model says so and keeps its inducing count and exact objective.
+TEST(ModelFile, SparseLearningSummaryLoadsBack) {
+  TrainingOptions options;
+  options.kind = ModelKind::kGpdm;
+  options.learning = Learning::kSparse;
+  options.inducing = 9;
+  options.full.max_iterations = 20;
+  const auto model = TrainGaitModel(test::SyntheticWalks(4, 8), test::Skeleton35(), options);
+  const auto back = ParseModelFile(FormatModelFile(model->data()), "m.json");
+  EXPECT_EQ(back->data().learning, "sparse");
+  EXPECT_EQ(back->data().summary.inducing, 9);
+  EXPECT_EQ(back->data().summary.exact_objective, model->data().summary.exact_objective);
+  EXPECT_EQ(back->latent(), model->latent());
+}
+
 class ModelFileErrors : public testing::Test {
  protected:
   static void SetUpTestSuite() { text_ = new std::string(FormatModelFile(SmallModel(ModelKind::kJgpm)->data())); }

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/error.h"
 #include "prior/blas_threads.h"
 #include "prior/full_trainer.h"
 #include "prior/local_trainer.h"
@@ -403,5 +404,33 @@ TEST(TrainGaitModel, NumericalFailureKeepsTheBestModelAndRestoresThreads) {
   EXPECT_EQ(model->latent(), model->data().prior_coordinates);
   EXPECT_EQ(LinearAlgebraThreads(), threads_before);
 }
+
+// Sparse learning end to end on a small ML-JGPM: the model file's summary says so, the
+// learned model's exact objective (evaluated once at the end) is below the bound it
+// minimised, as a bound must be, and it improved on the start; the inducing inputs are not
+// kept (predictions are exact). Too few or too many inducing inputs are refused.
+TEST(TrainGaitModel, SparseLearningReportsTheExactObjectiveBelowItsBound) {
+  TrainingOptions options;
+  options.kind = ModelKind::kMljgpmTorus;
+  options.learning = Learning::kSparse;
+  options.inducing = 12;
+  options.full.max_iterations = 60;
+  const GaitDataset walks = test::SyntheticWalks(4, 8);
+  const std::unique_ptr<GaitModel> model = TrainGaitModel(walks, test::Skeleton35(), options);
+  const TrainingSummary& s = model->data().summary;
+  EXPECT_EQ(model->data().learning, "sparse");
+  EXPECT_EQ(s.learning, "sparse");
+  EXPECT_EQ(s.inducing, 12);
+  EXPECT_TRUE(s.usable()) << s.BriefReport();
+  EXPECT_LT(s.final_objective, s.initial_objective);
+  EXPECT_LE(s.exact_objective, s.final_objective);
+  EXPECT_EQ(model->data().params.u.size(), 0);
+  EXPECT_NE(s.BriefReport().find("12 inducing inputs, exact objective"), std::string::npos) << s.BriefReport();
+  for (int m : {2, 10000}) {
+    options.inducing = m;
+    EXPECT_THROW(TrainGaitModel(walks, test::Skeleton35(), options), InputError) << m;
+  }
+}
+
 }  // namespace
 }  // namespace jgpm

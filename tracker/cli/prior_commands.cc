@@ -28,6 +28,7 @@ struct TrainArguments {
   std::string dataset;
   std::string data;
   std::string learning = "full";
+  int inducing = 100;
   uint64_t seed = 1;
   int threads = 0;
   int max_iterations = 0;
@@ -49,7 +50,8 @@ void RunTrain(const TrainArguments& a) {
   if (!ParseModelKind(a.model, &options.kind)) {
     ThrowInputError("--model " + a.model, "expected one of " + ModelKindList());
   }
-  options.learning = a.learning == "local" ? Learning::kLocal : Learning::kFull;
+  options.learning = a.learning == "local" ? Learning::kLocal : a.learning == "sparse" ? Learning::kSparse : Learning::kFull;
+  options.inducing = a.inducing;
   options.seed = a.seed;
   options.threads = a.threads;
   options.topology_sigma2 = a.sigma2;
@@ -132,8 +134,13 @@ void AddPriorCommands(CLI::App& app) {
   train->add_option("--split", a->split, "split name (datasets_scripts/splits/NAME.txt) or file")->capture_default_str();
   train->add_option("--dataset", a->dataset, "a prepared dataset (`jgpm data cycles`) instead of --split");
   train->add_option("--data", a->data, "data root (default: $JGPM_DATA, ./data/cmu, ../shared/data/cmu)");
-  train->add_option("--learning", a->learning, "full-batch L-BFGS or topology-aware local learning")
-      ->check(CLI::IsMember({"full", "local"}))
+  train->add_option("--learning", a->learning,
+                    "full-batch L-BFGS, topology-aware local learning, or full-batch on an inducing-point "
+                    "bound (sparse, O(N M^2))")
+      ->check(CLI::IsMember({"full", "local", "sparse"}))
+      ->capture_default_str();
+  train->add_option("--inducing", a->inducing, "sparse learning: inducing inputs per GP (M, 3..N)")
+      ->check(CLI::Range(3, 1000000))
       ->capture_default_str();
   train->add_option("--seed", a->seed, "random seed (local learning)")->capture_default_str();
   train->add_option("--threads", a->threads, "linear-algebra threads (0: all cores)")
