@@ -1,7 +1,6 @@
 #include "prior/train.h"
 
 #include <chrono>
-#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -143,22 +142,26 @@ std::unique_ptr<GaitModel> TrainGaitModel(TrainingSet training_set, const std::s
     }
     data.params.u = spread(all);
     if (spec.terms.dynamics) data.params.u_dynamics = spread(inputs);
+  }
+  if (options.learning != Learning::kLocal) {
     FullTrainingOptions full = options.full;
     if (options.progress) full.progress = options.progress;
     if (budget_set) full.budget = options.budget;
-    data.learning = "sparse";
     data.summary = TrainFull(objective, &data.params, full);
-    // The model keeps the latent points and hyper-parameters; its predictions are exact.
-    data.params.u.resize(0, 3);
-    data.params.u_dynamics.resize(0, 3);
-    const ObjectiveValue exact = objective.Evaluate(data.params, nullptr);
-    data.summary.exact_objective = exact.ok ? exact.total : std::nan("");
-  } else if (options.learning == Learning::kFull) {
-    FullTrainingOptions full = options.full;
-    if (options.progress) full.progress = options.progress;
-    if (budget_set) full.budget = options.budget;
-    data.learning = "full";
-    data.summary = TrainFull(objective, &data.params, full);
+    data.learning = data.summary.learning;
+    if (options.learning == Learning::kSparse) {
+      // The model keeps the latent points and hyper-parameters (its predictions are exact),
+      // and the summary their exact objective, comparable with the other learnings'.
+      data.params.u.resize(0, 3);
+      data.params.u_dynamics.resize(0, 3);
+      const ObjectiveValue exact = objective.Evaluate(data.params, nullptr);
+      if (exact.ok) {
+        data.summary.exact_objective = exact.total;
+      } else {
+        data.summary.inducing = 0;  // no exact objective to report
+        data.summary.message += "; the exact objective could not be evaluated (" + exact.why + ")";
+      }
+    }
   } else {
     LocalTrainingOptions local = options.local;
     local.seed = options.seed;
