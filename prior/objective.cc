@@ -47,32 +47,32 @@ int GpParameters::Size() const {
 }
 
 void GpParameters::Pack(double* out) const {
-  // x row by row, so a point's three coordinates are adjacent.
-  for (int i = 0; i < x.rows(); ++i) {
-    for (int d = 0; d < x.cols(); ++d) *out++ = x(i, d);
-  }
+  // Matrices row by row, so a point's three coordinates are adjacent.
+  auto rows = [&out](const Eigen::MatrixXd& m) {
+    for (int i = 0; i < m.rows(); ++i) {
+      for (int d = 0; d < m.cols(); ++d) *out++ = m(i, d);
+    }
+  };
+  rows(x);
   for (const Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
     for (int k = 0; k < v->size(); ++k) *out++ = (*v)[k];
   }
-  for (const Eigen::MatrixXd* m : {&u, &u_dynamics}) {
-    for (int i = 0; i < m->rows(); ++i) {
-      for (int d = 0; d < m->cols(); ++d) *out++ = (*m)(i, d);
-    }
-  }
+  rows(u);
+  rows(u_dynamics);
 }
 
 void GpParameters::Unpack(const double* in) {
-  for (int i = 0; i < x.rows(); ++i) {
-    for (int d = 0; d < x.cols(); ++d) x(i, d) = *in++;
-  }
-  for (Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
-    for (int k = 0; k < v->size(); ++k) (*v)[k] = *in++;
-  }
-  for (Eigen::MatrixXd* m : {&u, &u_dynamics}) {
+  auto rows = [&in](Eigen::MatrixXd* m) {
     for (int i = 0; i < m->rows(); ++i) {
       for (int d = 0; d < m->cols(); ++d) (*m)(i, d) = *in++;
     }
+  };
+  rows(&x);
+  for (Eigen::VectorXd* v : {&log_beta, &log_alpha, &log_w}) {
+    for (int k = 0; k < v->size(); ++k) (*v)[k] = *in++;
   }
+  rows(&u);
+  rows(&u_dynamics);
 }
 
 GpParameters GpParameters::ZerosLike() const {
@@ -139,13 +139,13 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
   {
     Eigen::MatrixXd a;
     Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
-    const Kernel::Kind kind = terms_.linear_mapping ? Kernel::Kind::kLinear : Kernel::Kind::kRbf;
-    const bool ok =
-        p.u.size() ? SparseGpTerm(Kernel(kind, p.log_beta), x, p.u, z, 1.0, terms_.inducing_jitter, "mapping kernel", &value.mapping, &a,
-                                  gradient ? &dx : nullptr, gradient ? &gradient->u : nullptr, &dbeta,
-                                  &value.jitter, &value.why)
-                   : GpTerm(Kernel(kind, p.log_beta), x, z, 1.0, "mapping kernel", &value.mapping, &a,
-                            gradient ? &dx : nullptr, &dbeta, &value.jitter, &value.why);
+    const Kernel kernel(terms_.linear_mapping ? Kernel::Kind::kLinear : Kernel::Kind::kRbf, p.log_beta);
+    const bool ok = p.u.size()
+                        ? SparseGpTerm(kernel, x, p.u, z, 1.0, terms_.inducing_jitter, "mapping kernel", &value.mapping,
+                                       &a, gradient ? &dx : nullptr, gradient ? &gradient->u : nullptr, &dbeta,
+                                       &value.jitter, &value.why)
+                        : GpTerm(kernel, x, z, 1.0, "mapping kernel", &value.mapping, &a, gradient ? &dx : nullptr,
+                                 &dbeta, &value.jitter, &value.why);
     if (!ok) return value;
     value.mapping += -m * p.log_w.sum() + 0.5 * m * d * kLog2Pi;
     if (gradient) {
@@ -194,9 +194,9 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
       double term;
       const Kernel dynamics_kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
       const bool ok = p.u_dynamics.size()
-                          ? SparseGpTerm(dynamics_kernel, x_in, p.u_dynamics, x_out, lambda, terms_.inducing_jitter, "dynamics kernel", &term,
-                                         &b, gradient ? &dx_in : nullptr, gradient ? &gradient->u_dynamics : nullptr,
-                                         &dalpha, &value.jitter, &value.why)
+                          ? SparseGpTerm(dynamics_kernel, x_in, p.u_dynamics, x_out, lambda, terms_.inducing_jitter,
+                                         "dynamics kernel", &term, &b, gradient ? &dx_in : nullptr,
+                                         gradient ? &gradient->u_dynamics : nullptr, &dalpha, &value.jitter, &value.why)
                           : GpTerm(dynamics_kernel, x_in, x_out, lambda, "dynamics kernel", &term, &b,
                                    gradient ? &dx_in : nullptr, &dalpha, &value.jitter, &value.why);
       if (!ok) return value;

@@ -36,7 +36,9 @@ class CameraObservation {
   // truncation outside the window or when it holds no foreground.
   float DistanceToForeground(float u, float v) const {
     u -= window_x_, v -= window_y_;
-    if (!(u >= -0.5f && v >= -0.5f && u < width_ - 0.5f && v < height_ - 0.5f)) return static_cast<float>(truncation_px_);
+    if (!(u >= -0.5f && v >= -0.5f && u < width_ - 0.5f && v < height_ - 0.5f)) {
+      return static_cast<float>(truncation_px_);
+    }
     return distance_row_[static_cast<int>(v + 0.5f) * stride_ + static_cast<int>(u + 0.5f)];
   }
   double truncation_px() const { return truncation_px_; }

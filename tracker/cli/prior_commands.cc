@@ -50,7 +50,9 @@ void RunTrain(const TrainArguments& a) {
   if (!ParseModelKind(a.model, &options.kind)) {
     ThrowInputError("--model " + a.model, "expected one of " + ModelKindList());
   }
-  options.learning = a.learning == "local" ? Learning::kLocal : a.learning == "sparse" ? Learning::kSparse : Learning::kFull;
+  options.learning = a.learning == "local"    ? Learning::kLocal
+                     : a.learning == "sparse" ? Learning::kSparse
+                                              : Learning::kFull;
   options.inducing = a.inducing;
   options.seed = a.seed;
   options.threads = a.threads;
