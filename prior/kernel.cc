@@ -10,17 +10,7 @@ Kernel::Kernel(Kind kind, const Eigen::VectorXd& log_params)
   JGPM_CHECK(log_params.size() == NumParams());
 }
 
-Eigen::MatrixXd Kernel::RbfPart(const Eigen::MatrixXd& x) const {
-  JGPM_CHECK(x.cols() == 3);
-  const int n = static_cast<int>(x.rows());
-  if (kind_ == Kind::kLinear) return Eigen::MatrixXd::Zero(n, n);
-  Eigen::MatrixXd k(n, n);
-  for (int j = 0; j < n; ++j) {
-    const Eigen::Vector3d q = x.row(j).transpose();
-    RbfRow(x.data(), n, q.data(), signal_variance(), inverse_width(), k.col(j).data());
-  }
-  return k;
-}
+Eigen::MatrixXd Kernel::RbfPart(const Eigen::MatrixXd& x) const { return RbfCross(x, x); }
 
 Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const {
   Eigen::MatrixXd k = rbf;
@@ -69,8 +59,8 @@ void Kernel::AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g,
 Eigen::MatrixXd Kernel::RbfCross(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const {
   JGPM_CHECK(a.cols() == 3 && b.cols() == 3);
   const int n = static_cast<int>(a.rows());
-  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, b.rows());
-  if (kind_ == Kind::kLinear) return k;
+  if (kind_ == Kind::kLinear) return Eigen::MatrixXd::Zero(n, b.rows());
+  Eigen::MatrixXd k(n, b.rows());
   for (int j = 0; j < b.rows(); ++j) {
     const Eigen::Vector3d q = b.row(j).transpose();
     RbfRow(a.data(), n, q.data(), signal_variance(), inverse_width(), k.col(j).data());

@@ -39,6 +39,15 @@ bool GpTerm(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixX
   return true;
 }
 
+// The exact term, or the sparse bound (prior/sparse_gp.h) when `u` holds inducing inputs;
+// then *du gets weight * dL/du.
+bool Term(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& u, const Eigen::MatrixXd& z,
+          double weight, double inducing_jitter, const char* name, double* value, Eigen::MatrixXd* a,
+          Eigen::MatrixXd* dx, Eigen::MatrixXd* du, Eigen::VectorXd* dlog_params, double* jitter, std::string* why) {
+  if (u.size() == 0) return GpTerm(kernel, x, z, weight, name, value, a, dx, dlog_params, jitter, why);
+  return SparseGpTerm(kernel, x, u, z, weight, inducing_jitter, name, value, a, dx, du, dlog_params, jitter, why);
+}
+
 }  // namespace
 
 int GpParameters::Size() const {
@@ -140,13 +149,10 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
     Eigen::MatrixXd a;
     Eigen::VectorXd dbeta = Eigen::VectorXd::Zero(3);
     const Kernel kernel(terms_.linear_mapping ? Kernel::Kind::kLinear : Kernel::Kind::kRbf, p.log_beta);
-    const bool ok = p.u.size()
-                        ? SparseGpTerm(kernel, x, p.u, z, 1.0, terms_.inducing_jitter, "mapping kernel", &value.mapping,
-                                       &a, gradient ? &dx : nullptr, gradient ? &gradient->u : nullptr, &dbeta,
-                                       &value.jitter, &value.why)
-                        : GpTerm(kernel, x, z, 1.0, "mapping kernel", &value.mapping, &a, gradient ? &dx : nullptr,
-                                 &dbeta, &value.jitter, &value.why);
-    if (!ok) return value;
+    if (!Term(kernel, x, p.u, z, 1.0, terms_.inducing_jitter, "mapping kernel", &value.mapping, &a,
+              gradient ? &dx : nullptr, gradient ? &gradient->u : nullptr, &dbeta, &value.jitter, &value.why)) {
+      return value;
+    }
     value.mapping += -m * p.log_w.sum() + 0.5 * m * d * kLog2Pi;
     if (gradient) {
       gradient->log_beta += dbeta;
@@ -192,14 +198,11 @@ ObjectiveValue GpObjective::EvaluateSubset(const GpParameters& p, const std::vec
       Eigen::MatrixXd b, dx_in = Eigen::MatrixXd::Zero(pairs, 3);
       Eigen::VectorXd dalpha = Eigen::VectorXd::Zero(4);
       double term;
-      const Kernel dynamics_kernel(Kernel::Kind::kRbfLinear, p.log_alpha);
-      const bool ok = p.u_dynamics.size()
-                          ? SparseGpTerm(dynamics_kernel, x_in, p.u_dynamics, x_out, lambda, terms_.inducing_jitter,
-                                         "dynamics kernel", &term, &b, gradient ? &dx_in : nullptr,
-                                         gradient ? &gradient->u_dynamics : nullptr, &dalpha, &value.jitter, &value.why)
-                          : GpTerm(dynamics_kernel, x_in, x_out, lambda, "dynamics kernel", &term, &b,
-                                   gradient ? &dx_in : nullptr, &dalpha, &value.jitter, &value.why);
-      if (!ok) return value;
+      if (!Term(Kernel(Kernel::Kind::kRbfLinear, p.log_alpha), x_in, p.u_dynamics, x_out, lambda,
+                terms_.inducing_jitter, "dynamics kernel", &term, &b, gradient ? &dx_in : nullptr,
+                gradient ? &gradient->u_dynamics : nullptr, &dalpha, &value.jitter, &value.why)) {
+        return value;
+      }
       dynamics += term + 0.5 * pairs * 3 * kLog2Pi;
       if (gradient) {
         gradient->log_alpha += dalpha;

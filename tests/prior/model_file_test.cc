@@ -50,12 +50,8 @@ TEST(ModelFile, LoadsBackToIdenticalPredictions) {
 
 // A sparse-learned model says so and keeps its inducing count and exact objective.
 TEST(ModelFile, SparseLearningSummaryLoadsBack) {
-  TrainingOptions options;
-  options.kind = ModelKind::kGpdm;
-  options.learning = Learning::kSparse;
-  options.inducing = 9;
-  options.full.max_iterations = 20;
-  const auto model = TrainGaitModel(test::SyntheticWalks(4, 8), test::Skeleton35(), options);
+  const auto model =
+      TrainGaitModel(test::SyntheticWalks(4, 8), test::Skeleton35(), test::SparseTraining(ModelKind::kGpdm, 9, 20));
   const auto back = ParseModelFile(FormatModelFile(model->data()), "m.json");
   EXPECT_EQ(back->data().learning, "sparse");
   EXPECT_EQ(back->data().summary.inducing, 9);

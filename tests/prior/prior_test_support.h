@@ -50,6 +50,16 @@ inline ReferenceSkeleton Skeleton35() {
   return {"35_01", ReadTextFile(CmuRoot() / "subjects/35/35.asf", "asf")};
 }
 
+// Sparse learning of `kind` with `inducing` inputs, at most `iterations` L-BFGS iterations.
+inline TrainingOptions SparseTraining(ModelKind kind, int inducing, int iterations) {
+  TrainingOptions options;
+  options.kind = kind;
+  options.learning = Learning::kSparse;
+  options.inducing = inducing;
+  options.full.max_iterations = iterations;
+  return options;
+}
+
 inline GaitDataset SyntheticWalks(int gaits, int poses) {
   const ReferenceSkeleton reference = Skeleton35();
   const GaitPoseLayout layout(ParseAsf(reference.asf, "35.asf"), "35.asf");

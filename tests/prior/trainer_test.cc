@@ -410,11 +410,7 @@ TEST(TrainGaitModel, NumericalFailureKeepsTheBestModelAndRestoresThreads) {
 // minimised, as a bound must be, and it improved on the start; the inducing inputs are not
 // kept (predictions are exact). Too few or too many inducing inputs are refused.
 TEST(TrainGaitModel, SparseLearningReportsTheExactObjectiveBelowItsBound) {
-  TrainingOptions options;
-  options.kind = ModelKind::kMljgpmTorus;
-  options.learning = Learning::kSparse;
-  options.inducing = 12;
-  options.full.max_iterations = 60;
+  TrainingOptions options = test::SparseTraining(ModelKind::kMljgpmTorus, 12, 60);
   const GaitDataset walks = test::SyntheticWalks(4, 8);
   const std::unique_ptr<GaitModel> model = TrainGaitModel(walks, test::Skeleton35(), options);
   const TrainingSummary& s = model->data().summary;
