@@ -1,7 +1,10 @@
 #include "prior/posture_prior.h"
 
+#include <cmath>
+#include <limits>
 #include <map>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "io/error.h"
@@ -15,6 +18,44 @@ bool PosturePriorOptions::Check(std::string* why) const {
   else if (!(floor_deg > 0)) problem = "floor_deg must be > 0";
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr;
+}
+
+namespace {
+
+// The unbiased covariance of the columns of `means` (D x n); zero for one column.
+Eigen::MatrixXd Spread(const Eigen::MatrixXd& means) {
+  const Eigen::Index n = means.cols();
+  if (n < 2) return Eigen::MatrixXd::Zero(means.rows(), means.rows());
+  const Eigen::MatrixXd centred = means.colwise() - means.rowwise().mean();
+  return centred * centred.transpose() / static_cast<double>(n - 1);
+}
+
+// Sigma: S with its off-diagonal (its correlations) kept at weight c, plus the floor.
+Eigen::MatrixXd Shrunk(const Eigen::MatrixXd& spread, double correlation_weight, double floor_deg) {
+  Eigen::MatrixXd covariance = correlation_weight * spread;
+  covariance.diagonal() = spread.diagonal().array() + floor_deg * floor_deg;
+  return covariance;
+}
+
+}  // namespace
+
+double HeldOutSubjectLogDensity(const Eigen::MatrixXd& means, double correlation_weight, double floor_deg) {
+  const Eigen::Index d = means.rows(), n = means.cols();
+  JGPM_CHECK(n >= 3 && floor_deg > 0);
+  double sum = 0;
+  for (Eigen::Index held = 0; held < n; ++held) {
+    Eigen::MatrixXd others(d, n - 1);
+    for (Eigen::Index s = 0, k = 0; s < n; ++s) {
+      if (s != held) others.col(k++) = means.col(s);
+    }
+    // The floor keeps Sigma's eigenvalues >= floor^2, so a plain Cholesky cannot fail.
+    const Eigen::LLT<Eigen::MatrixXd> llt(Shrunk(Spread(others), correlation_weight, floor_deg));
+    JGPM_CHECK(llt.info() == Eigen::Success);
+    const Eigen::VectorXd whitened = llt.matrixL().solve(means.col(held) - others.rowwise().mean());
+    const double log_det = 2 * llt.matrixLLT().diagonal().array().log().sum();
+    sum += -0.5 * (whitened.squaredNorm() + log_det + static_cast<double>(d) * std::log(2 * M_PI));
+  }
+  return sum / static_cast<double>(n);
 }
 
 PosturePrior PosturePrior::FromTrainingSet(const TrainingSet& set, const PosturePriorOptions& options) {
@@ -36,17 +77,26 @@ PosturePrior PosturePrior::FromTrainingSet(const TrainingSet& set, const Posture
   Eigen::MatrixXd means(d, n);
   int s = 0;
   for (const auto& [name, sum] : subjects) means.col(s++) = sum.first / sum.second;
-  Eigen::MatrixXd spread = Eigen::MatrixXd::Zero(d, d);
-  if (n > 1) {
-    const Eigen::MatrixXd centred = means.colwise() - means.rowwise().mean();
-    spread = centred * centred.transpose() / (n - 1);
-  }
-  // S with its off-diagonal (its correlations) kept at weight c, plus the floor.
-  Eigen::MatrixXd covariance = options.correlation_weight * spread;
-  covariance.diagonal() = spread.diagonal().array() + options.floor_deg * options.floor_deg;
+
   PosturePrior prior;
-  prior.Factorise(covariance);
   prior.subjects_ = n;
+  prior.correlation_weight_ = options.correlation_weight;
+  prior.floor_deg_ = options.floor_deg;
+  prior.selected_ = options.select && n >= 3;
+  if (prior.selected_) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (const double c : kPostureCorrelationWeights) {
+      for (const double floor : kPostureFloorsDeg) {
+        const double score = HeldOutSubjectLogDensity(means, c, floor);
+        if (score > best) {  // strict: ties keep the less correlated, smaller floor
+          best = score;
+          prior.correlation_weight_ = c;
+          prior.floor_deg_ = floor;
+        }
+      }
+    }
+  }
+  prior.Factorise(Shrunk(Spread(means), prior.correlation_weight_, prior.floor_deg_));
   return prior;
 }
 

@@ -1,7 +1,9 @@
 // The posture prior against its definition (prior/posture_prior.h), computed here from the
 // subject offsets the synthetic walks were made with: the spread of the subjects' mean
 // postures, its correlations kept at weight c, the floor added; A A^T and W^T W against
-// Sigma and its inverse (an LDLT solve).
+// Sigma and its inverse (an LDLT solve). The leave-one-subject-out choice of c and the
+// floor against a brute-force search written here, and against subjects whose postures
+// are known to be uncorrelated (c = 0) or to move along one direction (c = 1).
 #include "prior/posture_prior.h"
 
 #include <Eigen/Cholesky>
@@ -28,10 +30,12 @@ TEST(PosturePrior, IsTheSubjectsShrunkSpreadPlusTheFloor) {
   // channel index plus its subject's offset (the walks' sines average out over a cycle).
   const TrainingSet set = MakeTrainingSet(test::SyntheticSubjectWalks(12, 10, offsets), {0.5, 1.0});
   PosturePriorOptions options;
+  options.select = false;
   options.correlation_weight = 0.3;
   options.floor_deg = 1.5;
   const PosturePrior prior = PosturePrior::FromTrainingSet(set, options);
   EXPECT_EQ(prior.NumSubjects(), 4);
+  EXPECT_FALSE(prior.selected());
   const Eigen::MatrixXd centred = offsets.rowwise() - offsets.colwise().mean();
   const Eigen::MatrixXd spread = centred.transpose() * centred / 3.0;
   for (int i = 0; i < kChannels; ++i) {
@@ -53,8 +57,72 @@ TEST(PosturePrior, OneSubjectLeavesTheFloorAlone) {
   const TrainingSet set = MakeTrainingSet(test::SyntheticSubjectWalks(4, 10, SubjectOffsets(1)), {1.0});
   const PosturePrior prior = PosturePrior::FromTrainingSet(set);
   EXPECT_EQ(prior.NumSubjects(), 1);
+  EXPECT_FALSE(prior.selected());  // too few subjects to hold one out
   const double floor = PosturePriorOptions{}.floor_deg;
   EXPECT_LT((prior.covariance() - floor * floor * Eigen::MatrixXd::Identity(kChannels, kChannels)).norm(), 1e-12);
+}
+
+// Each subject's mean log density given the others, with an LDLT and the Gaussian written out.
+double BruteHeldOut(const Eigen::MatrixXd& offsets, double c, double floor) {  // subjects x D
+  const int n = static_cast<int>(offsets.rows());
+  double sum = 0;
+  for (int held = 0; held < n; ++held) {
+    Eigen::MatrixXd others(n - 1, kChannels);
+    for (int s = 0, k = 0; s < n; ++s) {
+      if (s != held) others.row(k++) = offsets.row(s);
+    }
+    const Eigen::RowVectorXd mean = others.colwise().mean();
+    const Eigen::MatrixXd centred = others.rowwise() - mean;
+    const Eigen::MatrixXd spread = centred.transpose() * centred / (n - 2.0);
+    Eigen::MatrixXd sigma(kChannels, kChannels);
+    for (int i = 0; i < kChannels; ++i) {
+      for (int j = 0; j < kChannels; ++j) sigma(i, j) = i == j ? spread(i, i) + floor * floor : c * spread(i, j);
+    }
+    const Eigen::VectorXd r = (offsets.row(held) - mean).transpose();
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(sigma);
+    sum += -0.5 * (r.dot(ldlt.solve(r)) + ldlt.vectorD().array().log().sum() + kChannels * std::log(2 * M_PI));
+  }
+  return sum / n;
+}
+
+// The chosen pair is the grid's best by the brute-force score, and the prior is built with it.
+void ExpectBestOfGrid(const Eigen::MatrixXd& offsets, const PosturePrior& prior) {
+  ASSERT_TRUE(prior.selected());
+  const double chosen = BruteHeldOut(offsets, prior.correlation_weight(), prior.floor_deg());
+  for (const double c : kPostureCorrelationWeights) {
+    for (const double floor : kPostureFloorsDeg) {
+      const double score = BruteHeldOut(offsets, c, floor);
+      EXPECT_LE(score, chosen + 1e-9 * std::abs(chosen)) << "c " << c << " floor " << floor;
+      EXPECT_NEAR(HeldOutSubjectLogDensity(offsets.transpose(), c, floor), score, 1e-9 * std::abs(score));
+    }
+  }
+  const Eigen::MatrixXd centred = offsets.rowwise() - offsets.colwise().mean();
+  const Eigen::MatrixXd spread = centred.transpose() * centred / (offsets.rows() - 1.0);
+  EXPECT_NEAR(prior.covariance()(0, 1), prior.correlation_weight() * spread(0, 1), 1e-9 * spread.maxCoeff());
+  EXPECT_NEAR(prior.covariance()(2, 2), spread(2, 2) + std::pow(prior.floor_deg(), 2), 1e-9 * spread.maxCoeff());
+}
+
+TEST(PosturePrior, UncorrelatedSubjectsKeepNoCorrelations) {
+  // Independent offsets per channel: correlations among 3 subjects are accidents.
+  const Eigen::MatrixXd offsets = SubjectOffsets(4);
+  const PosturePrior prior = PosturePrior::FromTrainingSet(
+      MakeTrainingSet(test::SyntheticSubjectWalks(12, 10, offsets), {1.0}));
+  ExpectBestOfGrid(offsets, prior);
+  EXPECT_EQ(prior.correlation_weight(), 0.0);
+}
+
+TEST(PosturePrior, SubjectsAlongOneDirectionKeepTheirCorrelations) {
+  // Every subject leans along the same direction v by its own amount: a held-out subject's
+  // offset is predicted by the others' correlations, exactly.
+  std::srand(9);
+  const Eigen::RowVectorXd v = 6 * Eigen::RowVectorXd::Random(kChannels);
+  const Eigen::VectorXd amount = Eigen::VectorXd::LinSpaced(6, -2, 2.5);
+  const Eigen::MatrixXd offsets = amount * v;
+  const PosturePrior prior = PosturePrior::FromTrainingSet(
+      MakeTrainingSet(test::SyntheticSubjectWalks(12, 10, offsets), {1.0}));
+  ExpectBestOfGrid(offsets, prior);
+  EXPECT_EQ(prior.NumSubjects(), 6);
+  EXPECT_EQ(prior.correlation_weight(), 1.0);
 }
 
 TEST(PosturePrior, BadInput) {

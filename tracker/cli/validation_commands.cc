@@ -24,6 +24,7 @@
 #include "prior/transition_report.h"
 #include "prior/transition_suite.h"
 #include "prior/model_file.h"
+#include "prior/posture_prior.h"
 #include "prior/validation.h"
 #include "prior/validation_report.h"
 #include "tracker/cli/progress.h"
@@ -308,6 +309,12 @@ void RunEval(const EvalArguments& a) {
     inference.adapt_posture = adapt;
     std::vector<std::string> run_names = names;
     if (adapt) for (std::string& name : run_names) name += "+posture";
+    for (size_t m = 0; adapt && m < models.size(); ++m) {  // what the prior's selection chose
+      const PosturePrior prior = PosturePrior::FromTrainingSet(models[m]->data().set, inference.posture);
+      std::printf("%s: posture prior from %d subjects, correlation weight %.2f, floor %.1f deg (%s)\n",
+                  run_names[m].c_str(), prior.NumSubjects(), prior.correlation_weight(), prior.floor_deg(),
+                  prior.selected() ? "chosen by leave-one-subject-out" : "fixed: fewer than 3 subjects");
+    }
     const size_t before = suite.size() * cases.size();
     std::vector<ModelResults> results = ValidateSuite(
         model_pointers, run_names, dataset, cases, inference, threads,
