@@ -15,6 +15,7 @@
 #include "prior/rbf_row.h"
 #include "prior/inference.h"
 #include "prior/model_file.h"
+#include "prior/learning_scaling.h"
 #include "prior/objective.h"
 #include "prior/train.h"
 #include "test_support.h"
@@ -147,33 +148,14 @@ BENCHMARK(BM_InferCycle)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 // inducing inputs, for N latent points: the exact one is O(N^3), the sparse O(N M^2).
 void BM_ObjectiveEvaluation(benchmark::State& state) {
   static const LinearAlgebraThreadScope one_thread(1);
-  const int n = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1)), channels = 43;
-  std::mt19937 random(3);
-  std::normal_distribution<double> noise(0, 0.05);
-  GpParameters p;
-  p.x.resize(n, 3);
-  Eigen::MatrixXd y(n, channels);
-  std::vector<Sequence> sequences;
-  for (int i = 0; i < n; ++i) {
-    const double phase = 2 * M_PI * (i % 30) / 30.0, gait = (i / 30) * 0.05;
-    p.x.row(i) << std::cos(phase) + noise(random), std::sin(phase) + noise(random), gait;
-    for (int d = 0; d < channels; ++d) y(i, d) = std::sin(phase * (1 + d % 3) + 0.1 * d + gait) + noise(random);
-    if (i % 30 == 0) sequences.push_back({i, std::min(30, n - i)});
-  }
-  p.log_beta = Eigen::Vector3d(0, 0, std::log(100.0));
-  p.log_alpha = Eigen::Vector4d(0, 0, std::log(0.1), std::log(1e4));
-  p.log_w = Eigen::VectorXd::Zero(channels);
-  if (m > 0) {
-    p.u.resize(m, 3);
-    p.u_dynamics.resize(m, 3);
-    for (int k = 0; k < m; ++k) p.u.row(k) = p.u_dynamics.row(k) = p.x.row(static_cast<long>(k) * n / m);
-  }
+  const SyntheticGpProblem problem =
+      MakeSyntheticGpProblem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   ObjectiveTerms terms;
   terms.channel_scales = terms.dynamics = true;
-  const GpObjective objective(y, sequences, nullptr, terms);
+  const GpObjective objective(problem.y, problem.sequences, nullptr, terms);
   GpParameters gradient;
-  for (auto _ : state) benchmark::DoNotOptimize(objective.Evaluate(p, &gradient).total);
-  state.SetLabel(m > 0 ? "sparse" : "exact");
+  for (auto _ : state) benchmark::DoNotOptimize(objective.Evaluate(problem.params, &gradient).total);
+  state.SetLabel(state.range(1) > 0 ? "sparse" : "exact");
 }
 BENCHMARK(BM_ObjectiveEvaluation)
     ->Args({900, 0})

@@ -11,7 +11,11 @@
 #include "io/gait_dataset.h"
 #include "io/split.h"
 #include "io/text_reader.h"
+#include "io/output_batch.h"
+#include "prior/blas_threads.h"
 #include "prior/latent_plot.h"
+#include "prior/learning_scaling.h"
+#include "prior/png_file.h"
 #include "prior/model_file.h"
 #include "prior/model_report.h"
 #include "prior/synthesis.h"
@@ -126,7 +130,64 @@ void RunSynth(const SynthArguments& a) {
   }
 }
 
+struct ScalingArguments {
+  std::vector<int> n = {900, 1800, 3600, 10000};
+  std::vector<int> m = {100, 200, 400};
+  int exact_max = 3600;
+  int repeats = 3;
+  int threads = 1;
+  std::string out;
+};
+
+void RunScaling(const ScalingArguments& a) {
+  for (const int n : a.n) {
+    if (n < 30) ThrowInputError("--n " + std::to_string(n), "expected at least 30 latent points (one cycle)");
+    for (const int m : a.m) {
+      if (m < 3 || m > n) ThrowInputError("--m " + std::to_string(m), "expected 3 <= M <= N (" + std::to_string(n) + ")");
+    }
+  }
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out);
+  const LinearAlgebraThreadScope threads(a.threads);
+  std::vector<ScalingPoint> points;
+  std::string csv = "n,m,seconds_per_evaluation,objective\n";
+  for (const int n : a.n) {
+    std::vector<int> ms = a.m;
+    if (n <= a.exact_max) ms.insert(ms.begin(), 0);
+    for (const int m : ms) {
+      const ScalingPoint p = TimeObjectiveEvaluation(n, m, a.repeats);
+      points.push_back(p);
+      std::printf("N %6d  %-12s %10.2f ms per evaluation\n", n, m ? ("M " + std::to_string(m)).c_str() : "exact",
+                  p.seconds * 1e3);
+      std::fflush(stdout);
+      csv += std::to_string(n) + "," + std::to_string(m) + "," + std::to_string(p.seconds) + "," +
+             std::to_string(p.objective) + "\n";
+    }
+  }
+  OutputBatch batch;
+  batch.Add(out / "scaling.csv", csv);
+  batch.Add(out / "scaling.png", EncodePng(ScalingPlot(points), "scaling.png"));
+  for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
+}
+
 }  // namespace
+
+void AddBenchLearning(CLI::App* bench) {
+  auto a = std::make_shared<ScalingArguments>();
+  CLI::App* learning = bench->add_subcommand(
+      "learning", "Time one objective evaluation (exact and sparse) against N on synthetic data; scaling.csv, scaling.png");
+  learning->add_option("--n", a->n, "latent points N (repeat or comma-separate)")->delimiter(',')->capture_default_str();
+  learning->add_option("--m", a->m, "inducing inputs M (repeat or comma-separate)")->delimiter(',')->capture_default_str();
+  learning->add_option("--exact-max", a->exact_max, "time the exact O(N^3) objective up to this N")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  learning->add_option("--repeats", a->repeats, "timed evaluations per point (the fastest is kept)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  learning->add_option("--threads", a->threads, "linear-algebra threads")->check(CLI::Range(1, 256))->capture_default_str();
+  learning->add_option("--out", a->out, "folder for scaling.csv and scaling.png")->required();
+  learning->callback([a] { RunScaling(*a); });
+}
 
 void AddPriorCommands(CLI::App& app) {
   auto a = std::make_shared<TrainArguments>();

@@ -1,4 +1,4 @@
-// `jgpm train` and `jgpm plot latent`: gait priors.
+// `jgpm train`, `jgpm plot latent`, `jgpm bench learning`: gait priors.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -6,5 +6,7 @@
 namespace jgpm::cli {
 
 void AddPriorCommands(CLI::App& app);
+// `jgpm bench learning`, under the `bench` command.
+void AddBenchLearning(CLI::App* bench);
 
 }  // namespace jgpm::cli

@@ -15,6 +15,7 @@
 #include "io/output_batch.h"
 #include "prior/png_file.h"
 #include "tracker/cli/device_commands.h"
+#include "tracker/cli/prior_commands.h"
 #include "tracker/cli/progress.h"
 #include "tracker/track_bench.h"
 #include "tracker/track_job.h"
@@ -343,6 +344,7 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->callback([b] { RunBench(*b); });
+  AddBenchLearning(bench);
 }
 
 }  // namespace jgpm::cli
