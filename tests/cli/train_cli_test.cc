@@ -1,5 +1,6 @@
 // `jgpm train` options that must do what the README says: --max-iterations bounds both
-// learnings, and a prepared --dataset needs no data root of its own.
+// learnings, a prepared --dataset needs no data root of its own, and --start continues
+// from a model's parameters (or refuses a model of another kind).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -58,6 +59,29 @@ TEST(TrainCli, DatasetBringsItsOwnDataRoot) {
   EXPECT_NE(refused, 0);
   EXPECT_NE(err.find("--data nowhere"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir.path() / "pca2.json"));
+}
+
+// Continuing a training: the second run starts where the first one ended (its initial
+// objective is the first's final one), and a model of another kind is refused untouched.
+TEST(TrainCli, StartContinuesFromAModel) {
+  test::TempDir dir;
+  const fs::path first = dir.path() / "first.json", second = dir.path() / "second.json";
+  const std::string common = "train --model gplvm --learning full --dataset " + Dataset().string();
+  test::CommandResult r = test::RunJgpm(common + " --max-iterations 5 --out " + first.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = test::RunJgpm(common + " --max-iterations 5 --start " + first.string() + " --out " + second.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json a = ReadJsonFile(first, "model")["model"]["summary"];
+  const nlohmann::json b = ReadJsonFile(second, "model")["model"]["summary"];
+  const double end_of_first = a["final_objective"];
+  EXPECT_NEAR(b["initial_objective"].get<double>(), end_of_first, 1e-9 * std::abs(end_of_first));
+  EXPECT_LT(b["final_objective"].get<double>(), end_of_first);
+  // Another kind's parameters mean nothing here: one error naming the option, no output.
+  r = test::RunJgpm("train --model gpdm --learning full --dataset " + Dataset().string() + " --start " +
+                    first.string() + " --out " + (dir.path() / "third.json").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--start " + first.string()), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "third.json"));
 }
 
 }  // namespace

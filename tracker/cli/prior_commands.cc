@@ -39,6 +39,7 @@ struct TrainArguments {
   double max_time = 0;
   int neighbourhood = 0;
   double sigma2 = 0.01;
+  std::string start;
 };
 
 // The first Ctrl-C (or SIGTERM) ends training early and the model learned so far is still
@@ -91,6 +92,18 @@ void RunTrain(const TrainArguments& a) {
     dataset = PrepareGaitDataset(root, a.split, ReadSplit(ResolveSplitPath(a.split, JGPM_SPLITS_DIR)), GaitCycleOptions{});
   }
   const ReferenceSkeleton skeleton = ChooseReferenceSkeleton(dataset, root);
+  if (!a.start.empty()) {  // the same kind on the same cycles, or its parameters mean nothing here
+    const std::unique_ptr<GaitModel> start = ReadModelFile(a.start);
+    std::vector<std::string> ids;
+    for (const GaitTrial& t : dataset.trials) {
+      if (t.cycle.clean) ids.push_back(t.id.name);
+    }
+    if (start->kind() != options.kind || start->data().set.gait_ids != ids) {
+      ThrowInputError("--start " + a.start, "is not a " + a.model + " model trained on the clean cycles of " +
+                                                dataset.split + "; start from a model of the same kind and trials");
+    }
+    options.start = start->data().params;
+  }
   std::printf("training %s (%s learning) on %d clean gait cycles of %s\n", a.model.c_str(), a.learning.c_str(),
               dataset.NumClean(), dataset.split.c_str());
   std::fflush(stdout);
@@ -223,6 +236,9 @@ void AddPriorCommands(CLI::App& app) {
   train->add_option("--topology-sigma2", a->sigma2, "sigma^2 of the LLE topology energy")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  train->add_option("--start", a->start,
+                    "start from this model's latent points and hyper-parameters (same kind and trials): continues "
+                    "a training that was stopped, or refines one learning with another");
   train->callback([a] { RunTrain(*a); });
 
   auto info_model = std::make_shared<std::string>();
