@@ -10,6 +10,7 @@
 
 #include "io/data_root.h"
 #include "io/gait_dataset.h"
+#include "io/heap.h"
 #include "io/text_reader.h"
 #include "prior/blas_threads.h"
 #include "prior/rbf_row.h"
@@ -22,6 +23,9 @@
 
 namespace jgpm {
 namespace {
+
+// As the jgpm command does, so that the figures are the ones it gets.
+const bool kFreedMemoryKept = KeepFreedMemory();
 
 // $JGPM_MODEL (a model file, e.g. the quick start's) when set: the inference figures
 // depend on how far the solver goes, which a 2-iteration model does not show.

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "io/error.h"
+#include "io/heap.h"
 #include "tracker/cli/calibration_commands.h"
 #include "tracker/cli/data_commands.h"
 #include "tracker/cli/device_commands.h"
@@ -15,6 +16,7 @@
 #include "tracker/cli/validation_commands.h"
 
 int main(int argc, char** argv) {
+  jgpm::KeepFreedMemory();  // learning's temporaries are reused, not page-faulted in again
   CLI::App app{"jgpm: gait priors (ML-JGPM) from motion capture and 3-D gait tracking in video"};
   app.set_version_flag("--version", "jgpm " JGPM_VERSION);
   app.require_subcommand(1);
