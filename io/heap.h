@@ -13,13 +13,13 @@
 
 namespace jgpm {
 
-// Blocks up to 32 MB (glibc's largest mmap threshold) come from the heap, and freed heap
-// memory is kept up to 1 GB. Call once at the start of main, before threads exist.
-// Returns false if the C library refused (the program still works, only slower).
+// Every block comes from the heap (no mmap of single blocks; glibc still maps memory when
+// the heap cannot grow), and freed heap memory is kept up to 1 GB. Call once at the start
+// of main, before threads exist. Returns false if the C library refused (the program
+// still works, only slower).
 bool KeepFreedMemory();
 
-// The thresholds it sets, for tests.
-inline constexpr std::size_t kHeapMmapThreshold = std::size_t{32} << 20;
+// The trim threshold it sets, for tests.
 inline constexpr std::size_t kHeapTrimThreshold = std::size_t{1} << 30;
 
 }  // namespace jgpm

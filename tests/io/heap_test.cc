@@ -49,6 +49,10 @@ TEST(Heap, LargeBlocksComeFromTheHeapAndStayThere) {
   for (void*& b : blocks) b = Use(kBlock);
   EXPECT_EQ(mallinfo2().arena, arena) << "the second round reuses the first's memory";
   for (void* b : blocks) std::free(b);
+  // Beyond glibc's largest mmap threshold (32 MB) too.
+  void* large = Use(std::size_t{96} << 20);
+  EXPECT_EQ(mallinfo2().hblkhd, mapped) << "a 96 MB block was mmapped";
+  std::free(large);
 }
 
 }  // namespace
