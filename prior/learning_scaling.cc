@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
@@ -84,9 +86,9 @@ cv::Mat ScalingPlot(const std::vector<ScalingPoint>& points) {
     const double ms = std::pow(10, e) * 1e3;
     text(ms >= 1 ? std::to_string(static_cast<long>(ms)) + " ms" : std::to_string(ms).substr(0, 5) + " ms", {6, a.y + 4});
   }
-  std::map<int, bool> ns;
-  for (const ScalingPoint& p : points) ns[p.n] = true;
-  for (const auto& [n, unused] : ns) {
+  std::set<int> ns;
+  for (const ScalingPoint& p : points) ns.insert(p.n);
+  for (const int n : ns) {
     const cv::Point at = to_pixel(n, std::pow(10, ly0));
     cv::line(image, {at.x, top}, at, cv::Scalar(228, 228, 228));
     text(std::to_string(n), {at.x - 14, at.y + 18});
@@ -112,7 +114,7 @@ cv::Mat ScalingPlot(const std::vector<ScalingPoint>& points) {
          0.45);
     ++row;
   }
-  // Reference slopes from the first sparse line's first point: linear and cubic growth.
+  // Linear growth for reference, from the largest M's smallest N.
   const ScalingPoint& base = lines.rbegin()->second.front();
   const double ratio = n_hi / base.n;
   cv::line(image, to_pixel(base.n, base.seconds), to_pixel(n_hi, base.seconds * ratio), cv::Scalar(160, 160, 160), 1,

@@ -35,7 +35,7 @@ struct ScalingPoint {
 ScalingPoint TimeObjectiveEvaluation(int n, int m, int repeats);
 
 // Seconds per evaluation against N, log-log, one line per M (and the exact objective), with
-// a line of slope 1 (linear) and 3 (cubic) for reference.
+// a line of slope 1 (linear growth) for reference.
 cv::Mat ScalingPlot(const std::vector<ScalingPoint>& points);
 
 }  // namespace jgpm

@@ -1,10 +1,17 @@
 // `jgpm train` options that must do what the README says: --max-iterations bounds both
 // learnings, a prepared --dataset needs no data root of its own, and --start continues
-// from a model's parameters (or refuses a model of another kind).
+// from a model's parameters (or refuses a model of another kind); and `jgpm bench
+// learning`, whose figures are the objective the library evaluates.
+#include <cstdio>
+#include <sstream>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/json_file.h"
+#include "io/text_reader.h"
+#include "prior/learning_scaling.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -82,6 +89,40 @@ TEST(TrainCli, StartContinuesFromAModel) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("--start " + first.string()), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "third.json"));
+}
+
+TEST(TrainCli, BenchLearningTimesWhatTheLibraryEvaluates) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "scaling";
+  test::CommandResult r =
+      test::RunJgpm("bench learning --n 60,90 --m 10 --exact-max 60 --repeats 1 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  // N = 60 exact and sparse, N = 90 sparse only; each row's objective is the library's.
+  const std::string csv = ReadTextFile(out / "scaling.csv", "scaling");
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "n,m,seconds_per_evaluation,objective");
+  std::vector<std::pair<int, int>> rows;
+  while (std::getline(lines, line)) {
+    int n = 0, m = 0;
+    double seconds = 0, objective = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf", &n, &m, &seconds, &objective), 4) << line;
+    rows.push_back({n, m});
+    EXPECT_GT(seconds, 0);
+    const SyntheticGpProblem problem = MakeSyntheticGpProblem(n, m);
+    ObjectiveTerms terms;
+    terms.channel_scales = terms.dynamics = true;
+    const double expected = GpObjective(problem.y, problem.sequences, nullptr, terms).Evaluate(problem.params, nullptr).total;
+    EXPECT_NEAR(objective, expected, 1e-5 * std::abs(expected) + 1e-6) << line;  // printed to 6 decimals
+  }
+  EXPECT_EQ(rows, (std::vector<std::pair<int, int>>{{60, 0}, {60, 10}, {90, 10}}));
+  EXPECT_FALSE(cv::imread((out / "scaling.png").string()).empty());
+  // More inducing inputs than points: one line naming the option, nothing written.
+  r = test::RunJgpm("bench learning --n 60 --m 61 --out " + (dir.path() / "bad").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "jgpm: error: --m 61: expected 3 <= M <= N (60)\n");
+  EXPECT_FALSE(fs::exists(dir.path() / "bad" / "scaling.csv"));
 }
 
 }  // namespace
