@@ -71,6 +71,14 @@ std::vector<T> ParseList(const std::string& text, const std::string& option, con
   return items;
 }
 
+// What the posture prior's selection chose for a model (prior/posture_prior.h).
+void PrintPosturePrior(const std::string& name, const GaitModel& model) {
+  const PosturePrior prior = PosturePrior::FromTrainingSet(model.data().set);
+  std::printf("%s: posture prior from %d subjects, correlation weight %.2f, floor %.1f deg (%s)\n", name.c_str(),
+              prior.NumSubjects(), prior.correlation_weight(), prior.floor_deg(),
+              prior.selected() ? "chosen by leave-one-subject-out" : "fixed: fewer than 3 subjects");
+}
+
 std::vector<bool> AdaptModes(const std::string& adapt) {  // none, posture, both
   std::vector<bool> modes;
   if (adapt != "posture") modes.push_back(false);
@@ -106,6 +114,12 @@ void RunLoso(const EvalArguments& a) {
   std::fflush(stdout);
 
   const auto start = std::chrono::steady_clock::now();
+  auto print_posture_prior = [&options](const std::string& name, const GaitModel& model) {
+    if (std::find(options.adapt.begin(), options.adapt.end(), true) != options.adapt.end()) {
+      PrintPosturePrior(name, model);
+    }
+    std::fflush(stdout);
+  };
   auto model_for = [&](const LosoFold& fold, ModelKind kind) -> std::unique_ptr<GaitModel> {
     const std::string name = std::string(ModelKindName(kind)) + "-without-" + fold.subject;
     const std::filesystem::path path = models / (name + ".json");
@@ -117,6 +131,7 @@ void RunLoso(const EvalArguments& a) {
         ThrowInputError(path.string(), "was trained on other trials or is another kind; remove it to train it again");
       }
       std::printf("%-26s read from %s\n", name.c_str(), path.string().c_str());
+      print_posture_prior(name, *model);
       return model;
     }
     ProgressLine line("train " + name);
@@ -129,7 +144,7 @@ void RunLoso(const EvalArguments& a) {
     WriteModelFile(path, *model);
     std::printf("%-26s trained on %zu trials in %.0f s: %s\n", name.c_str(), ids.size(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count(), path.string().c_str());
-    std::fflush(stdout);
+    print_posture_prior(name, *model);
     return model;
   };
   const std::vector<LosoResult> results = RunLoso(folds, options, model_for, [](const LosoResult& r, size_t, size_t) {
@@ -309,12 +324,7 @@ void RunEval(const EvalArguments& a) {
     inference.adapt_posture = adapt;
     std::vector<std::string> run_names = names;
     if (adapt) for (std::string& name : run_names) name += "+posture";
-    for (size_t m = 0; adapt && m < models.size(); ++m) {  // what the prior's selection chose
-      const PosturePrior prior = PosturePrior::FromTrainingSet(models[m]->data().set, inference.posture);
-      std::printf("%s: posture prior from %d subjects, correlation weight %.2f, floor %.1f deg (%s)\n",
-                  run_names[m].c_str(), prior.NumSubjects(), prior.correlation_weight(), prior.floor_deg(),
-                  prior.selected() ? "chosen by leave-one-subject-out" : "fixed: fewer than 3 subjects");
-    }
+    for (size_t m = 0; adapt && m < models.size(); ++m) PrintPosturePrior(run_names[m], *models[m]);
     const size_t before = suite.size() * cases.size();
     std::vector<ModelResults> results = ValidateSuite(
         model_pointers, run_names, dataset, cases, inference, threads,
