@@ -119,7 +119,7 @@ cv::Mat ScalingPlot(const std::vector<ScalingPoint>& points) {
   const double ratio = n_hi / base.n;
   cv::line(image, to_pixel(base.n, base.seconds), to_pixel(n_hi, base.seconds * ratio), cv::Scalar(160, 160, 160), 1,
            cv::LINE_AA);
-  text("slope 1 (linear)", to_pixel(n_hi, base.seconds * ratio) + cv::Point(-110, 16), {120, 120, 120}, 0.38);
+  text("slope 1 (linear)", to_pixel(n_hi, base.seconds * ratio) + cv::Point(-120, -10), {120, 120, 120}, 0.38);
   return image;
 }
 
