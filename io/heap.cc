@@ -2,7 +2,11 @@
 
 #include <malloc.h>
 
+#include <cstddef>
+
 namespace jgpm {
+
+constexpr std::size_t kHeapTrimThreshold = std::size_t{1} << 30;
 
 bool KeepFreedMemory() {
   // A threshold alone cannot do it: glibc caps M_MMAP_THRESHOLD at 32 MB, and an exact

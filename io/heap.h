@@ -9,8 +9,6 @@
 // slower than with the memory kept (measured side by side, `jgpm bench learning`).
 #pragma once
 
-#include <cstddef>
-
 namespace jgpm {
 
 // Every block comes from the heap (no mmap of single blocks; glibc still maps memory when
@@ -18,8 +16,5 @@ namespace jgpm {
 // of main, before threads exist. Returns false if the C library refused (the program
 // still works, only slower).
 bool KeepFreedMemory();
-
-// The trim threshold it sets, for tests.
-inline constexpr std::size_t kHeapTrimThreshold = std::size_t{1} << 30;
 
 }  // namespace jgpm

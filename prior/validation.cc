@@ -14,6 +14,7 @@
 #include "io/error.h"
 #include "io/text_reader.h"
 #include "prior/blas_threads.h"
+#include "prior/posture_prior.h"
 #include "prior/training_set.h"
 
 namespace jgpm {
@@ -170,9 +171,15 @@ std::vector<ValidationTrial> LoadValidationTrials(const GaitDataset& dataset, co
 }
 
 ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTrial>& trials,
-                          const ValidationCase& c, const InferenceOptions& inference, int threads) {
+                          const ValidationCase& c, const InferenceOptions& options, int threads) {
   std::string why;
   if (!c.Check(&why)) ThrowInputError("validation case " + c.Label(), why);
+  // The posture prior depends on the model alone: its c and floor are chosen once here, not
+  // again for every trial's inference.
+  InferenceOptions inference = options;
+  if (inference.adapt_posture) {
+    inference.posture = PosturePrior::FromTrainingSet(model.data().set, inference.posture).Chosen();
+  }
   const auto start = std::chrono::steady_clock::now();
   const int n = static_cast<int>(trials.size());
   const int draws = c.task == ValidationTask::kFiltering ? c.draws : 1;

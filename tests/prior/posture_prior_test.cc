@@ -118,11 +118,15 @@ TEST(PosturePrior, SubjectsAlongOneDirectionKeepTheirCorrelations) {
   const Eigen::RowVectorXd v = 6 * Eigen::RowVectorXd::Random(kChannels);
   const Eigen::VectorXd amount = Eigen::VectorXd::LinSpaced(6, -2, 2.5);
   const Eigen::MatrixXd offsets = amount * v;
-  const PosturePrior prior = PosturePrior::FromTrainingSet(
-      MakeTrainingSet(test::SyntheticSubjectWalks(12, 10, offsets), {1.0}));
+  const TrainingSet set = MakeTrainingSet(test::SyntheticSubjectWalks(12, 10, offsets), {1.0});
+  const PosturePrior prior = PosturePrior::FromTrainingSet(set);
   ExpectBestOfGrid(offsets, prior);
   EXPECT_EQ(prior.NumSubjects(), 6);
   EXPECT_EQ(prior.correlation_weight(), 1.0);
+  // Its chosen options rebuild the same prior without choosing again.
+  const PosturePrior again = PosturePrior::FromTrainingSet(set, prior.Chosen());
+  EXPECT_FALSE(again.selected());
+  EXPECT_EQ(again.covariance(), prior.covariance());
 }
 
 TEST(PosturePrior, BadInput) {
