@@ -63,34 +63,56 @@ class FrameResidual : public ceres::CostFunction {
   const Eigen::VectorXd inverse_noise_;
 };
 
-// With posture adaptation: (f_k(x_t) + delta_k - u_tk) / s_k, one channel on the blocks x_t
-// and delta_k. One block per channel and frame keeps J sparse: a frame-wide block on the
-// whole offset would make Ceres form J^T J from dense D x D blocks, 60% more time per solve.
-class ChannelResidual : public ceres::SizedCostFunction<1, 3, 1> {
+// With posture adaptation: (c_k + g_k (f_k(x_t) - c_k) + delta_k - u_tk) / s_k, one channel on
+// the blocks x_t and s_k = (delta_k, g_k - 1). One block per channel and frame keeps J sparse:
+// a frame-wide block on the whole style would make Ceres form J^T J from dense blocks (60%
+// more time per solve with the offset alone).
+class ChannelResidual : public ceres::SizedCostFunction<1, 3, 2> {
  public:
-  ChannelResidual(const BatchedMeans& means, int t, int k, double observed, double inverse_noise)
-      : means_(means), t_(t), k_(k), u_(observed), inverse_noise_(inverse_noise) {}
+  ChannelResidual(const BatchedMeans& means, int t, int k, double observed, double inverse_noise, double centre)
+      : means_(means), t_(t), k_(k), u_(observed), inverse_noise_(inverse_noise), centre_(centre) {}
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    residuals[0] = inverse_noise_ * (means_.poses(t_, k_) + parameters[1][0] - u_);
+    const double f = means_.poses(t_, k_), a = parameters[1][1];  // a = g - 1
+    residuals[0] = inverse_noise_ * (f + a * (f - centre_) + parameters[1][0] - u_);
     if (jacobians && jacobians[0]) {
-      for (int d = 0; d < 3; ++d) jacobians[0][d] = inverse_noise_ * means_.jacobians[d](t_, k_);
+      for (int d = 0; d < 3; ++d) jacobians[0][d] = inverse_noise_ * (1 + a) * means_.jacobians[d](t_, k_);
     }
-    if (jacobians && jacobians[1]) jacobians[1][0] = inverse_noise_;
+    if (jacobians && jacobians[1]) {
+      jacobians[1][0] = inverse_noise_;
+      jacobians[1][1] = inverse_noise_ * (f - centre_);
+    }
     return true;
   }
 
  private:
   const BatchedMeans& means_;
   const int t_, k_;
-  const double u_, inverse_noise_;
+  const double u_, inverse_noise_, centre_;
 };
 
-// The posture prior's W delta (prior/posture_prior.h), on the D blocks delta_k.
+// The gain's prior, (g_k - 1) / gain_std, on the block s_k.
+class GainResidual : public ceres::SizedCostFunction<1, 2> {
+ public:
+  explicit GainResidual(double inverse_std) : inverse_std_(inverse_std) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    residuals[0] = inverse_std_ * parameters[0][1];
+    if (jacobians && jacobians[0]) {
+      jacobians[0][0] = 0;
+      jacobians[0][1] = inverse_std_;
+    }
+    return true;
+  }
+
+ private:
+  const double inverse_std_;
+};
+
+// The posture prior's W delta (prior/posture_prior.h), on the D blocks s_k.
 class PostureResidual : public ceres::CostFunction {
  public:
   explicit PostureResidual(const PosturePrior& prior) : whitening_(prior.whitening()) {
     set_num_residuals(static_cast<int>(whitening_.rows()));
-    for (int k = 0; k < whitening_.cols(); ++k) mutable_parameter_block_sizes()->push_back(1);
+    for (int k = 0; k < whitening_.cols(); ++k) mutable_parameter_block_sizes()->push_back(2);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const int n = static_cast<int>(whitening_.cols());
@@ -99,7 +121,12 @@ class PostureResidual : public ceres::CostFunction {
     for (int k = 0; k < n; ++k) r += whitening_.col(k) * parameters[k][0];
     if (jacobians) {
       for (int k = 0; k < n; ++k) {
-        if (jacobians[k]) Eigen::Map<Eigen::VectorXd>(jacobians[k], n) = whitening_.col(k);
+        if (jacobians[k]) {
+          for (int i = 0; i < n; ++i) {
+            jacobians[k][2 * i] = whitening_(i, k);
+            jacobians[k][2 * i + 1] = 0;
+          }
+        }
       }
     }
     return true;
@@ -193,6 +220,7 @@ bool InferenceOptions::Check(std::string* why) const {
   if (!(observation_noise_deg > 0)) problem = "observation_noise_deg must be > 0";
   else if (!(dynamics_tolerance > 0)) problem = "dynamics_tolerance must be > 0";
   else if (!(adapted_dynamics_tolerance > 0)) problem = "adapted_dynamics_tolerance must be > 0";
+  else if (!(gain_std > 0)) problem = "gain_std must be > 0";
   else if (adapt_posture && !posture.Check(&why_posture)) problem = why_posture.c_str();
   else if (max_iterations < 0 || adapted_max_iterations < 0) problem = "max_iterations must be >= 0";
   if (problem && why) *why = problem;  // `why` may be null
@@ -205,7 +233,7 @@ struct SequenceProblem::Impl {
         posture(options.adapt_posture
                     ? std::make_unique<PosturePrior>(PosturePrior::FromTrainingSet(model.data().set, options.posture))
                     : nullptr),
-        x(3 * t, 0.0), delta(posture ? model.NumChannels() : 0, 0.0), means(model, x), problem([this] {
+        x(3 * t, 0.0), style(posture ? 2 * model.NumChannels() : 0, 0.0), means(model, x), problem([this] {
           ceres::Problem::Options options;
           options.evaluation_callback = &means;
           return options;
@@ -215,24 +243,31 @@ struct SequenceProblem::Impl {
   const int t;
   const std::unique_ptr<const PosturePrior> posture;  // when adapting
   std::vector<double> x;      // the parameter blocks: x_t at x.data() + 3 t
-  std::vector<double> delta;  // and, when adapting, delta_k at delta.data() + k
+  std::vector<double> style;  // and, when adapting, s_k = (delta_k, g_k - 1) at style.data() + 2 k
   BatchedMeans means;         // before `problem`, which points to it
   ceres::Problem problem;
   const int max_iterations;
 
-  void Set(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg) {
+  using Strided = Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<2>>;
+  Strided Offset() { return {style.data(), static_cast<Eigen::Index>(style.size() / 2)}; }
+  Strided GainLessOne() { return {style.data() + 1, static_cast<Eigen::Index>(style.size() / 2)}; }
+
+  // Empty posture_deg: zero; empty gain: ones.
+  void Set(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg, const Eigen::VectorXd& gain) {
     JGPM_CHECK(latent.rows() == t && latent.cols() == 3);
     Eigen::Map<PackedLatent>(x.data(), t, 3) = latent;
-    JGPM_CHECK(posture_deg.size() == 0 || posture_deg.size() == static_cast<int>(delta.size()));
-    if (posture_deg.size()) std::copy(posture_deg.data(), posture_deg.data() + posture_deg.size(), delta.begin());
-    else std::fill(delta.begin(), delta.end(), 0.0);
+    const Eigen::Index d = static_cast<Eigen::Index>(style.size() / 2);
+    JGPM_CHECK(posture_deg.size() == 0 || posture_deg.size() == d);
+    JGPM_CHECK(gain.size() == 0 || gain.size() == d);
+    std::fill(style.begin(), style.end(), 0.0);
+    if (posture_deg.size()) Offset() = posture_deg;
+    if (gain.size()) GainLessOne() = gain.array() - 1;
   }
-  Eigen::VectorXd Delta() const { return Eigen::Map<const Eigen::VectorXd>(delta.data(), static_cast<int>(delta.size())); }
-  // The parameter blocks in the order of Evaluate's gradient: x_0 .. x_{T-1} [, delta_k].
+  // The parameter blocks in the order of Evaluate's gradient: x_0 .. x_{T-1} [, s_k].
   std::vector<double*> Blocks() {
     std::vector<double*> blocks;
     for (int f = 0; f < t; ++f) blocks.push_back(x.data() + 3 * f);
-    for (double& d : delta) blocks.push_back(&d);
+    for (size_t k = 0; k < style.size(); k += 2) blocks.push_back(&style[k]);
     return blocks;
   }
 };
@@ -253,8 +288,9 @@ SequenceProblem::SequenceProblem(const GaitModel& model, const PoseObservations&
     if (impl_->posture) {
       for (size_t i = 0; i < channels.size(); ++i) {
         const int k = channels[i];
-        impl_->problem.AddResidualBlock(new ChannelResidual(impl_->means, f, k, o.poses_deg(f, k), inverse_noise[i]),
-                                        nullptr, x, &impl_->delta[k]);
+        impl_->problem.AddResidualBlock(
+            new ChannelResidual(impl_->means, f, k, o.poses_deg(f, k), inverse_noise[i], model.data().set.mean[k]),
+            nullptr, x, &impl_->style[2 * k]);
       }
       continue;
     }
@@ -264,7 +300,10 @@ SequenceProblem::SequenceProblem(const GaitModel& model, const PoseObservations&
   }
   if (impl_->posture) {
     std::vector<double*> blocks;
-    for (double& d : impl_->delta) blocks.push_back(&d);
+    for (int k = 0; k < model.NumChannels(); ++k) {
+      blocks.push_back(&impl_->style[2 * k]);
+      impl_->problem.AddResidualBlock(new GainResidual(1 / options.gain_std), nullptr, &impl_->style[2 * k]);
+    }
     impl_->problem.AddResidualBlock(new PostureResidual(*impl_->posture), nullptr, blocks);
   }
   if (model.HasDynamics()) {
@@ -293,28 +332,31 @@ int SequenceProblem::NumFrames() const { return impl_->t; }
 const PosturePrior* SequenceProblem::posture() const { return impl_->posture.get(); }
 
 double SequenceProblem::Evaluate(const Eigen::MatrixXd& latent, Eigen::MatrixXd* gradient) {
-  return Evaluate(latent, Eigen::VectorXd(), gradient, nullptr);
+  return Evaluate(latent, Eigen::VectorXd(), Eigen::VectorXd(), gradient, nullptr, nullptr);
 }
 
 double SequenceProblem::Evaluate(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg,
-                                 Eigen::MatrixXd* gradient, Eigen::VectorXd* posture_gradient) {
-  impl_->Set(latent, posture_deg);
+                                 const Eigen::VectorXd& gain, Eigen::MatrixXd* gradient,
+                                 Eigen::VectorXd* posture_gradient, Eigen::VectorXd* gain_gradient) {
+  impl_->Set(latent, posture_deg, gain);
   double cost = 0;
   std::vector<double> g;
   ceres::Problem::EvaluateOptions options;
   options.parameter_blocks = impl_->Blocks();
-  impl_->problem.Evaluate(options, &cost, nullptr, gradient || posture_gradient ? &g : nullptr, nullptr);
+  impl_->problem.Evaluate(options, &cost, nullptr, gradient || posture_gradient || gain_gradient ? &g : nullptr, nullptr);
   if (gradient) *gradient = Eigen::Map<const PackedLatent>(g.data(), impl_->t, 3);
-  if (posture_gradient) {
-    *posture_gradient = Eigen::Map<const Eigen::VectorXd>(g.data() + 3 * impl_->t, static_cast<int>(impl_->delta.size()));
-  }
+  // The style blocks' gradient, (dE/d delta_k, dE/d g_k) per channel.
+  using Strided = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<2>>;
+  const Eigen::Index d = static_cast<Eigen::Index>(impl_->style.size() / 2);
+  if (posture_gradient) *posture_gradient = Strided(g.data() + 3 * impl_->t, d);
+  if (gain_gradient) *gain_gradient = Strided(g.data() + 3 * impl_->t + 1, d);
   return cost;
 }
 
-InferenceResult SequenceProblem::Solve(const Eigen::MatrixXd& initial_latent, const Eigen::VectorXd& initial_posture) {
+InferenceResult SequenceProblem::Solve(const Eigen::MatrixXd& initial_latent) {
   InferenceResult result;
   result.initial_latent = initial_latent;
-  result.initial_objective = Evaluate(initial_latent, initial_posture, nullptr, nullptr);
+  result.initial_objective = Evaluate(initial_latent, nullptr);
   ceres::Solver::Options options;
   options.max_num_iterations = impl_->max_iterations;
   // Frames couple only through the dynamics: J^T J is block tridiagonal. Eigen's sparse
@@ -330,10 +372,15 @@ InferenceResult SequenceProblem::Solve(const Eigen::MatrixXd& initial_latent, co
                        : summary.termination_type == ceres::NO_CONVERGENCE ? Termination::kNoConvergence
                                                                            : Termination::kNumericalFailure;
   result.latent = Eigen::Map<const PackedLatent>(impl_->x.data(), impl_->t, 3);
-  result.posture_deg = impl_->posture ? impl_->Delta() : Eigen::VectorXd::Zero(impl_->model.NumChannels());
-  result.final_objective = Evaluate(result.latent, impl_->posture ? result.posture_deg : Eigen::VectorXd(), nullptr, nullptr);
-  result.poses_deg = impl_->model.MeanPoses(result.latent);
-  result.poses_deg.rowwise() += result.posture_deg.transpose();
+  const int d = impl_->model.NumChannels();
+  result.posture_deg = impl_->posture ? Eigen::VectorXd(impl_->Offset()) : Eigen::VectorXd::Zero(d);
+  result.gain = impl_->posture ? Eigen::VectorXd(impl_->GainLessOne().array() + 1) : Eigen::VectorXd::Ones(d);
+  result.final_objective = impl_->posture ? Evaluate(result.latent, result.posture_deg, result.gain, nullptr, nullptr, nullptr)
+                                          : Evaluate(result.latent, nullptr);
+  // c + g (f - c) + delta, c the training mean posture.
+  const Eigen::RowVectorXd& centre = impl_->model.data().set.mean;
+  result.poses_deg = ((impl_->model.MeanPoses(result.latent).rowwise() - centre) * result.gain.asDiagonal()).rowwise() +
+                     (centre + result.posture_deg.transpose());
   if (!result.poses_deg.allFinite()) {
     result.termination = Termination::kNumericalFailure;
     result.message = "the model's mean poses are not finite";

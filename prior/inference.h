@@ -26,17 +26,25 @@
 // Initialisation: each x_t starts at the latent point of the training pose nearest to
 // u_t on the observed channels (nanoflann).
 //
-// Posture adaptation (adapt_posture, issue #15): the mean pose gains a per-sequence offset,
-// f(x_t) + delta, delta under the training subjects' posture prior (prior/posture_prior.h),
-// and E gains the prior's energy 1/2 |W delta|^2; delta is estimated with X. The
-// estimate is then f(x_t) + delta on every channel: a channel not observed takes the
-// prior's conditional mean given the observed ones, not a copy of data it lacks. delta
+// Posture adaptation (adapt_posture, issue #15): the mean pose gains a per-sequence style, an
+// offset and an amplitude gain per channel, c + g (f(x_t) - c) + delta with c the training
+// mean posture; delta under the training subjects' posture prior (prior/posture_prior.h),
+// g under N(1, gain_std^2); E gains their energies 1/2 |W delta|^2 + 1/2 |(g - 1) / gain_std|^2
+// and both are estimated with X. The estimate is then the styled mean pose on every channel:
+// a channel not observed takes the prior's conditional mean offset given the observed ones
+// and gain 1, not a copy of data it lacks. The gain takes up what an offset cannot: an
+// unseen person's larger or smaller swing (subject 07 at s = 1: 40.2 mm with the offset
+// alone, 33.0 with the gain; 35/39 18.4 -> 15.1). Its width is not estimated per channel:
+// the training subjects' amplitudes differ by a log-ratio std of 0.05-0.12 on hip and knee
+// flexion, which carry the walk, but ~0.5-1 on the arms, and a gain that free on the
+// observed half of a body trades against the latent phase (subject 07, left side missing:
+// 63.6 mm against 58.8 with 0.1 everywhere). delta
 // starts at 0 (starting it at the offset the nearest training poses imply, and the latent
 // points at the nearest poses of the observations less it, ended worse: subject 07 45.3
 // against 43.0 mm). With the offset free, the latent points follow the data less and the
 // model's walk more: d is adapted_dynamics_tolerance (0.25 mean steps; on the test split
 // subject 07 43.0 -> 40.1 mm, 35/39 17.4 either way; without adaptation 0.25 is worse,
-// 34.8 -> 35.8 mm). J^T J stays sparse: block tridiagonal plus a border of D columns.
+// 34.8 -> 35.8 mm). J^T J stays sparse: block tridiagonal plus a border of 2 D columns.
 // An adapted iteration costs more (the border in the linear solve; fewer rejected steps,
 // so more Jacobians): 12 of them take ~10% longer than 15 plain ones and reach the
 // subject-07 error of 15 or 25 (40.1 mm; 35/39: 18.4, 17.4, 17.0 mm).
@@ -63,6 +71,7 @@ struct InferenceOptions {
   bool adapt_posture = false;   // estimate a posture offset with the latent points
   double adapted_dynamics_tolerance = 0.25;  // d when adapting
   int adapted_max_iterations = 12;           // and its iterations
+  double gain_std = 0.1;                     // of the per-channel amplitude gain's prior
   PosturePriorOptions posture;  // its prior (from the model's training subjects)
 
   bool Check(std::string* why) const;
@@ -78,8 +87,9 @@ struct PoseObservations {
 struct InferenceResult {
   Eigen::MatrixXd initial_latent;  // T x 3, the nearest training poses' latent points
   Eigen::MatrixXd latent;          // T x 3
-  Eigen::MatrixXd poses_deg;       // T x D, f(x_t) + delta
+  Eigen::MatrixXd poses_deg;       // T x D, c + g (f(x_t) - c) + delta
   Eigen::VectorXd posture_deg;     // delta, D channels (zero without adaptation)
+  Eigen::VectorXd gain;            // g, D channels (ones without adaptation)
   double initial_objective = 0;    // E at initial_latent
   double final_objective = 0;
   int iterations = 0;
@@ -100,13 +110,14 @@ class SequenceProblem {
   int NumFrames() const;
   // The posture prior when adapting, else null.
   const PosturePrior* posture() const;
-  // E at `latent` (T x 3) and, when adapting, the offset `posture_deg` (D; empty: zero);
-  // with `gradient`, also dE/dX (T x 3), with `posture_gradient` dE/d delta.
+  // E at `latent` (T x 3) and, when adapting, the offset `posture_deg` (D; empty: zero) and
+  // gains `gain` (D; empty: ones); with `gradient`, also dE/dX (T x 3), with the others
+  // dE/d delta and dE/dg.
   double Evaluate(const Eigen::MatrixXd& latent, Eigen::MatrixXd* gradient);
-  double Evaluate(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg, Eigen::MatrixXd* gradient,
-                  Eigen::VectorXd* posture_gradient);
-  // Minimises E from `initial_latent` and, when adapting, `initial_posture` (empty: zero).
-  InferenceResult Solve(const Eigen::MatrixXd& initial_latent, const Eigen::VectorXd& initial_posture = {});
+  double Evaluate(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg, const Eigen::VectorXd& gain,
+                  Eigen::MatrixXd* gradient, Eigen::VectorXd* posture_gradient, Eigen::VectorXd* gain_gradient);
+  // Minimises E from `initial_latent`, the style starting at zero offset and unit gains.
+  InferenceResult Solve(const Eigen::MatrixXd& initial_latent);
 
  private:
   struct Impl;
