@@ -76,6 +76,7 @@ std::vector<LosoResult> RunLoso(
       for (const bool adapt : options.adapt) {
         InferenceOptions inference;
         inference.adapt_posture = adapt;
+        inference.gain_std = options.gain_std;
         results.push_back({fold.subject, kind, adapt, Validate(*model, trials, ValidationCase{}, inference, options.threads)});
         if (progress) progress(results.back(), results.size(), total);
       }

@@ -37,6 +37,7 @@ double Mean(const std::vector<double>& v) {
 struct TrialOutcome {
   PoseErrors errors;
   Eigen::VectorXd posture_deg;  // the offset inference found (zero without adaptation)
+  Eigen::VectorXd gain;         // and the gains (ones)
   bool failed = false;          // inference ended in a numerical failure
 };
 
@@ -68,7 +69,7 @@ TrialOutcome TrialError(const GaitModel& model, const ValidationTrial& trial, in
   }
   const InferenceResult result = InferLatentSequence(model, observations, inference);
   if (!result.poses_deg.allFinite()) ThrowInputError("inference", result.message);
-  return {ComparePoses(*trial.kinematics, result.poses_deg, truth), result.posture_deg,
+  return {ComparePoses(*trial.kinematics, result.poses_deg, truth), result.posture_deg, result.gain,
           result.termination == Termination::kNumericalFailure};
 }
 
@@ -187,7 +188,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   // the same for any number of threads.
   std::vector<double> errors(static_cast<size_t>(n) * draws);
   std::vector<PoseErrors> details(errors.size());
-  std::vector<Eigen::VectorXd> postures(errors.size());
+  std::vector<Eigen::VectorXd> postures(errors.size()), gains(errors.size());
   std::vector<char> failed(errors.size(), 0);
   // Any exception in a worker is carried to this thread and rethrown there (the first
   // trial's, so which one is reported does not depend on the thread count); an escaping
@@ -201,6 +202,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
           errors[i * draws + k] = outcome.errors.mean_mm;
           details[i * draws + k] = outcome.errors;
           postures[i * draws + k] = outcome.posture_deg;
+          gains[i * draws + k] = outcome.gain;
           failed[i * draws + k] = outcome.failed;
         }
       } catch (...) {
@@ -236,17 +238,21 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   // Per joint and channel: the mean over trials and draws, as mean_error_mm is.
   Eigen::VectorXd joint_mm = Eigen::VectorXd::Zero(details[0].joint_mm.size());
   Eigen::VectorXd channel_deg = Eigen::VectorXd::Zero(details[0].channel_deg.size());
-  Eigen::VectorXd posture_deg = Eigen::VectorXd::Zero(channel_deg.size());
+  Eigen::VectorXd posture_deg = Eigen::VectorXd::Zero(channel_deg.size()), gain = posture_deg;
   for (size_t i = 0; i < details.size(); ++i) {
     joint_mm += details[i].joint_mm / static_cast<double>(details.size());
     channel_deg += details[i].channel_deg / static_cast<double>(details.size());
     posture_deg += postures[i] / static_cast<double>(details.size());
+    gain += gains[i] / static_cast<double>(details.size());
   }
   for (int j = 1; j < static_cast<int>(GaitJoints().size()); ++j) result.joint_names.emplace_back(GaitJoints()[j].name);
   result.channel_names = model.data().set.channel_names;
   result.joint_errors_mm.assign(joint_mm.data(), joint_mm.data() + joint_mm.size());
   result.channel_errors_deg.assign(channel_deg.data(), channel_deg.data() + channel_deg.size());
-  if (inference.adapt_posture) result.channel_posture_deg.assign(posture_deg.data(), posture_deg.data() + posture_deg.size());
+  if (inference.adapt_posture) {
+    result.channel_posture_deg.assign(posture_deg.data(), posture_deg.data() + posture_deg.size());
+    result.channel_gain.assign(gain.data(), gain.data() + gain.size());
+  }
   result.inference_failures = static_cast<int>(std::count(failed.begin(), failed.end(), 1));
   if (c.task == ValidationTask::kFiltering) {
     for (int k = 0; k < draws; ++k) {

@@ -68,6 +68,7 @@ struct ValidationResult {
   // With inference's adapt_posture, each channel's posture offset, mean over every trial
   // and draw: what the test subjects' posture differs by, as the prior allows it.
   std::vector<double> channel_posture_deg;
+  std::vector<double> channel_gain;  // and each channel's amplitude gain, likewise
   std::vector<double> draw_errors_mm;   // filtering: mean over the trials, per draw
   double mean_error_mm = 0;
   double std_error_mm = 0;              // filtering: over the draws; else over the trials

@@ -203,6 +203,7 @@ nlohmann::json ValidationResultJson(const ValidationResult& r) {
   for (size_t k = 0; k < r.channel_names.size(); ++k) {
     nlohmann::json channel = {{"channel", r.channel_names[k]}, {"deg", r.channel_errors_deg[k]}};
     if (k < r.channel_posture_deg.size()) channel["posture_offset_deg"] = r.channel_posture_deg[k];
+    if (k < r.channel_gain.size()) channel["gain"] = r.channel_gain[k];
     channels.push_back(channel);
   }
   j["per_joint_mm"] = joints;
@@ -241,6 +242,9 @@ std::string SuiteDetailCsv(const std::vector<ModelResults>& suite) {
       }
       for (size_t k = 0; k < r.channel_posture_deg.size(); ++k) {
         csv += key + "posture_offset_deg," + r.channel_names[k] + "," + Number(r.channel_posture_deg[k], "%.3f") + "\n";
+      }
+      for (size_t k = 0; k < r.channel_gain.size(); ++k) {
+        csv += key + "gain," + r.channel_names[k] + "," + Number(r.channel_gain[k], "%.4f") + "\n";
       }
     }
   }

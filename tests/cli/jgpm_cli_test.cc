@@ -483,11 +483,25 @@ TEST(JgpmCli, EvalAdaptsPosture) {
   EXPECT_TRUE(plain.channel_posture_deg.empty());
   for (int k = 0; k < model->NumChannels(); ++k) {
     EXPECT_NEAR(a["per_channel_deg"][k]["posture_offset_deg"].get<double>(), adapted.channel_posture_deg[k], 1e-9);
+    EXPECT_NEAR(a["per_channel_deg"][k]["gain"].get<double>(), adapted.channel_gain[k], 1e-9);
   }
+  EXPECT_GT(*std::max_element(adapted.channel_gain.begin(), adapted.channel_gain.end()), 1.01);  // gains moved
   EXPECT_FALSE(j["models"][0]["results"][0]["per_channel_deg"][0].contains("posture_offset_deg"));
-  const Result bad = Jgpm("eval --model " + pca.string() + " --task interpolation --adapt size" + data);
-  EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.err.find("--adapt"), std::string::npos) << bad.err;
+  // --gain-std reaches the inference: the library's result with that prior.
+  ASSERT_EQ(Jgpm("eval --model " + pca.string() + " --task interpolation --adapt posture --gain-std 0.3 --trials " +
+                 trials.string() + data + " --json " + json.string())
+                .status,
+            0);
+  adapt.gain_std = 0.3;
+  const double wide = Validate(*model, LoadValidationTrials(dataset, *model), ValidationCase{}, adapt).mean_error_mm;
+  const nlohmann::json w = nlohmann::json::parse(ReadTextFile(json, "json"));
+  EXPECT_NEAR(w["mean_error_mm"].get<double>(), wide, 1e-9 * wide);  // one model, one case: the result itself
+  EXPECT_GT(std::abs(wide - adapted.mean_error_mm), 1e-6);
+  for (const char* option : {" --adapt size", " --gain-std 0", " --gain-std -1"}) {
+    const Result bad = Jgpm("eval --model " + pca.string() + " --task interpolation" + option + data);
+    EXPECT_EQ(bad.status, 2) << option;
+    EXPECT_NE(bad.err.find(std::string(option).substr(1, std::string(option).find(' ', 1) - 1)), std::string::npos) << bad.err;
+  }
 }
 
 // --suite loso with PCA on three subjects: each fold's errors are those of a PCA the
