@@ -34,20 +34,25 @@
 // a channel not observed takes the prior's conditional mean offset given the observed ones
 // and gain 1, not a copy of data it lacks. The gain takes up what an offset cannot: an
 // unseen person's larger or smaller swing (subject 07 at s = 1: 40.2 mm with the offset
-// alone, 33.0 with the gain; 35/39 18.4 -> 15.1). Its width is not estimated per channel:
-// the training subjects' amplitudes differ by a log-ratio std of 0.05-0.12 on hip and knee
-// flexion, which carry the walk, but ~0.5-1 on the arms, and a gain that free on the
-// observed half of a body trades against the latent phase (subject 07, left side missing:
-// 63.6 mm against 58.8 with 0.1 everywhere). delta
+// alone, 32.2 with the gain; 35/39 18.4 -> 14.8). It also hedges: where the model cannot
+// follow a channel's timing, a gain below 1 (a damped swing) is the least-squares answer
+// (07's knee swings 1.10 times the training subjects' mean, its gain comes out 0.61).
+// gain_std is one value for every channel (the subjects' amplitudes differ by a log-ratio
+// std of 0.05-0.12 on hip and knee flexion but ~0.5-1 on the arms, and a gain that free on
+// the observed half of a body trades against the latent phase), chosen by leave one
+// subject out over the default split's training subjects alone
+// (datasets_scripts/choose_gain_std.sh: 0.15 of {0.05, ..., 0.5}). delta
 // starts at 0 (starting it at the offset the nearest training poses imply, and the latent
 // points at the nearest poses of the observations less it, ended worse: subject 07 45.3
 // against 43.0 mm). With the offset free, the latent points follow the data less and the
 // model's walk more: d is adapted_dynamics_tolerance (0.25 mean steps; on the test split
 // subject 07 43.0 -> 40.1 mm, 35/39 17.4 either way; without adaptation 0.25 is worse,
-// 34.8 -> 35.8 mm). J^T J stays sparse: block tridiagonal plus a border of 2 D columns.
+// 34.8 -> 35.8 mm; with the gain, 0.5 is worse too: 07 33.8 mm, left side missing 81.7
+// against 57.4). J^T J stays sparse: block tridiagonal plus a border of 2 D columns.
 // An adapted iteration costs more (the border in the linear solve; fewer rejected steps,
-// so more Jacobians): 12 of them take ~10% longer than 15 plain ones and reach the
-// subject-07 error of 15 or 25 (40.1 mm; 35/39: 18.4, 17.4, 17.0 mm).
+// so more Jacobians): 12 of them take 32-43% longer than 15 plain ones (19-29% with the
+// offset alone; prior_benchmark BM_InferCycle). Fewer cost accuracy: 10 iterations leave
+// subject 07 with a missing left leg at 46.4 mm against 45.2, 8 at 50.0.
 #pragma once
 
 #include <memory>
@@ -71,7 +76,7 @@ struct InferenceOptions {
   bool adapt_posture = false;   // estimate a posture offset with the latent points
   double adapted_dynamics_tolerance = 0.25;  // d when adapting
   int adapted_max_iterations = 12;           // and its iterations
-  double gain_std = 0.1;                     // of the per-channel amplitude gain's prior
+  double gain_std = 0.15;                    // of the per-channel amplitude gain's prior
   PosturePriorOptions posture;  // its prior (from the model's training subjects)
 
   bool Check(std::string* why) const;
