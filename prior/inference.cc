@@ -13,7 +13,6 @@ namespace {
 
 using PackedLatent = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-// Mean distance between the latent points of consecutive training poses of a cycle.
 // The mean poses (and Jacobians) of all frames, computed in one batch before each
 // evaluation from the latent points in `x`, which Ceres keeps at the evaluation point.
 class BatchedMeans : public ceres::EvaluationCallback {
