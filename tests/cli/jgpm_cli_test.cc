@@ -464,6 +464,10 @@ TEST(JgpmCli, EvalAdaptsPosture) {
                         trials.string() + data + " --json " + json.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("pca+posture"), std::string::npos) << r.out;
+  const size_t gains = r.out.find("gains furthest from 1:");  // printed for the adapted run only
+  ASSERT_NE(gains, std::string::npos) << r.out;
+  EXPECT_GT(gains, r.out.find("pca+posture")) << r.out;
+  EXPECT_EQ(r.out.find("gains furthest from 1:", gains + 1), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(ReadTextFile(json, "json"));
   ASSERT_EQ(j["models"].size(), 2u);
   EXPECT_EQ(j["models"][0]["name"], "pca");

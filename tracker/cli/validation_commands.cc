@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -352,6 +353,15 @@ void RunEval(const EvalArguments& a) {
           std::printf("\n  largest angle errors:");
           for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
             std::printf(" %s %.1f deg", r.channel_names[order[k]].c_str(), r.channel_errors_deg[order[k]]);
+          }
+          if (!r.channel_gain.empty()) {  // a gain below 1 may be hedging (prior/inference.h)
+            std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) {
+              return std::abs(r.channel_gain[x] - 1) > std::abs(r.channel_gain[y] - 1);
+            });
+            std::printf("\n  gains furthest from 1:");
+            for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
+              std::printf(" %s %.2f", r.channel_names[order[k]].c_str(), r.channel_gain[order[k]]);
+            }
           }
           std::printf("\n");
         }
