@@ -36,7 +36,8 @@
 // unseen person's larger or smaller swing (subject 07 at s = 1: 40.2 mm with the offset
 // alone, 32.2 with the gain; 35/39 18.4 -> 14.8). It also hedges: where the model cannot
 // follow a channel's timing, a gain below 1 (a damped swing) is the least-squares answer
-// (07's knee swings 1.10 times the training subjects' mean, its gain comes out 0.61).
+// (07's knee swings 1.10 times the training subjects' mean, its gain comes out 0.61);
+// gains matched to each channel's swing instead leave 07 at 33.1 mm, so ~1 mm of the 8.
 // gain_std is one value for every channel (the subjects' amplitudes differ by a log-ratio
 // std of 0.05-0.12 on hip and knee flexion but ~0.5-1 on the arms, and a gain that free on
 // the observed half of a body trades against the latent phase), chosen by leave one
