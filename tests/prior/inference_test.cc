@@ -454,11 +454,12 @@ TEST(InferencePosture, RecoversAKnownOffsetAndInventsNone) {
 }
 
 // A training cycle whose swing is scaled per channel about the training mean posture and
-// shifted (the oracle: those gains, less the prior's pull toward 1, 1 / (1 + s^2 /
-// (gain_std^2 T swing^2)), a quarter for a 10-degree swing). ML-JGPM reproduces the cycle
-// (checked above), so the gains come back on every channel that swings enough to show one. The gains have no common part: scaling every channel alike is what the
-// model's layers do (eq. 5), so the latent points may take that up instead. The unscaled
-// cycle gets gains within 0.02 of 1.
+// shifted (the oracle: those gains, less the prior's pull toward 1, by 1 / (1 + s^2 /
+// (gain_std^2 T swing^2)): 6% for a 10-degree swing). ML-JGPM reproduces the cycle (checked
+// above), so the gains come back on every channel that swings enough to show one. The
+// gains have no common part: scaling every channel alike is what the model's layers do
+// (eq. 5), so the latent points may take that up instead. The unscaled cycle gets gains
+// within 0.02 of 1.
 TEST(InferencePosture, RecoversKnownGainsAndInventsNone) {
   const GaitModel& model = PeopleModel(ModelKind::kMljgpmTorus);
   const int channels = model.NumChannels();
@@ -495,7 +496,7 @@ TEST(InferencePosture, RecoversKnownGainsAndInventsNone) {
             << "% of g - 1 (rms, after the prior's shrinkage); poses off by " << MeanAbsDeg(adapted.poses_deg, o.poses_deg)
             << " deg\n";
   ASSERT_GE(checked, 4);  // the premise: hips and knees swing
-  EXPECT_LT(std::sqrt(error2 / size2), 0.15);  // 0.27 without the shrinkage
+  EXPECT_LT(std::sqrt(error2 / size2), 0.15);  // 0.12; 0.19 against the gains as added
   EXPECT_LT(MeanAbsDeg(adapted.poses_deg, o.poses_deg), 0.5);
 
   o.poses_deg = cycle;
