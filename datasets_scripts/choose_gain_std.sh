@@ -5,7 +5,7 @@
 # MAX_TIME s; reused from OUT/models when present), then for each gain_std of a grid the
 # mean error at s = 1 of interpolation and of the three reconstructions (left arm, leg,
 # side missing) over the held-out subjects, each weighing alike. The smallest mean of the
-# four cases wins. About 10 min on 2 cores the first time, 3 min after.
+# four cases wins. About 13 min on 2 cores the first time, 1 min after.
 #
 #   datasets_scripts/choose_gain_std.sh [OUT=build/gain_std [MAX_TIME=300]]
 set -euo pipefail
