@@ -89,43 +89,31 @@ class ChannelResidual : public ceres::SizedCostFunction<1, 3, 2> {
   const double u_, inverse_noise_, centre_;
 };
 
-// The gain's prior, (g_k - 1) / gain_std, on the block s_k.
-class GainResidual : public ceres::SizedCostFunction<1, 2> {
+// The style's priors on the D blocks s_k: the posture prior's W delta
+// (prior/posture_prior.h), then the gains' (g_k - 1) / gain_std.
+class StylePriorResidual : public ceres::CostFunction {
  public:
-  explicit GainResidual(double inverse_std) : inverse_std_(inverse_std) {}
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    residuals[0] = inverse_std_ * parameters[0][1];
-    if (jacobians && jacobians[0]) {
-      jacobians[0][0] = 0;
-      jacobians[0][1] = inverse_std_;
-    }
-    return true;
-  }
-
- private:
-  const double inverse_std_;
-};
-
-// The posture prior's W delta (prior/posture_prior.h), on the D blocks s_k.
-class PostureResidual : public ceres::CostFunction {
- public:
-  explicit PostureResidual(const PosturePrior& prior) : whitening_(prior.whitening()) {
-    set_num_residuals(static_cast<int>(whitening_.rows()));
+  StylePriorResidual(const PosturePrior& prior, double gain_std)
+      : whitening_(prior.whitening()), inverse_gain_std_(1 / gain_std) {
+    set_num_residuals(2 * static_cast<int>(whitening_.rows()));
     for (int k = 0; k < whitening_.cols(); ++k) mutable_parameter_block_sizes()->push_back(2);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const int n = static_cast<int>(whitening_.cols());
-    Eigen::Map<Eigen::VectorXd> r(residuals, n);
-    r.setZero();
-    for (int k = 0; k < n; ++k) r += whitening_.col(k) * parameters[k][0];
+    Eigen::Map<Eigen::VectorXd> offset(residuals, n), gain(residuals + n, n);
+    offset.setZero();
+    for (int k = 0; k < n; ++k) {
+      offset += whitening_.col(k) * parameters[k][0];
+      gain[k] = inverse_gain_std_ * parameters[k][1];
+    }
     if (jacobians) {
       for (int k = 0; k < n; ++k) {
-        if (jacobians[k]) {
-          for (int i = 0; i < n; ++i) {
-            jacobians[k][2 * i] = whitening_(i, k);
-            jacobians[k][2 * i + 1] = 0;
-          }
-        }
+        if (!jacobians[k]) continue;
+        // Row-major, 2n rows x 2 columns (delta_k, g_k - 1).
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>> j(jacobians[k], 2 * n, 2);
+        j.setZero();
+        j.col(0).head(n) = whitening_.col(k);
+        j(n + k, 1) = inverse_gain_std_;
       }
     }
     return true;
@@ -133,6 +121,7 @@ class PostureResidual : public ceres::CostFunction {
 
  private:
   const Eigen::MatrixXd whitening_;
+  const double inverse_gain_std_;
 };
 
 // (x_t - g(x_{t-1})) / d, on the blocks x_{t-1} and x_t.
@@ -299,11 +288,8 @@ SequenceProblem::SequenceProblem(const GaitModel& model, const PoseObservations&
   }
   if (impl_->posture) {
     std::vector<double*> blocks;
-    for (int k = 0; k < model.NumChannels(); ++k) {
-      blocks.push_back(&impl_->style[2 * k]);
-      impl_->problem.AddResidualBlock(new GainResidual(1 / options.gain_std), nullptr, &impl_->style[2 * k]);
-    }
-    impl_->problem.AddResidualBlock(new PostureResidual(*impl_->posture), nullptr, blocks);
+    for (size_t k = 0; k < impl_->style.size(); k += 2) blocks.push_back(&impl_->style[k]);
+    impl_->problem.AddResidualBlock(new StylePriorResidual(*impl_->posture, options.gain_std), nullptr, blocks);
   }
   if (model.HasDynamics()) {
     const double tolerance = options.adapt_posture ? options.adapted_dynamics_tolerance : options.dynamics_tolerance;

@@ -81,6 +81,19 @@ void PrintPosturePrior(const std::string& name, const GaitModel& model) {
               prior.selected() ? "chosen by leave-one-subject-out" : "fixed: fewer than 3 subjects");
 }
 
+// "  LABEL" and the five names whose `score(value)` is largest, each printed by `format`
+// (a name and its value).
+template <typename Score>
+void PrintLargest(const char* label, const std::vector<std::string>& names, const std::vector<double>& values,
+                  const char* format, Score score) {
+  std::vector<size_t> order(names.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return score(values[x]) > score(values[y]); });
+  std::printf("  %s", label);
+  for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) std::printf(format, names[order[k]].c_str(), values[order[k]]);
+  std::printf("\n");
+}
+
 std::vector<bool> AdaptModes(const std::string& adapt) {  // none, posture, both
   std::vector<bool> modes;
   if (adapt != "posture") modes.push_back(false);
@@ -340,30 +353,14 @@ void RunEval(const EvalArguments& a) {
         std::printf("%-22s %-34s %8.2f mm  (std %6.2f, %zu trials, %.1f s)\n", m.model.c_str(),
                     r.validation_case.Label().c_str(), r.mean_error_mm, r.std_error_mm, r.trials.size(), r.seconds);
         if (cases.size() == 1 && models.size() == 1) {  // one case: where its error comes from
-          std::vector<size_t> order(r.joint_names.size());
-          for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-          std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) { return r.joint_errors_mm[x] > r.joint_errors_mm[y]; });
-          std::printf("  largest joint errors:");
-          for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
-            std::printf(" %s %.1f mm", r.joint_names[order[k]].c_str(), r.joint_errors_mm[order[k]]);
-          }
-          order.resize(r.channel_names.size());
-          for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-          std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) { return r.channel_errors_deg[x] > r.channel_errors_deg[y]; });
-          std::printf("\n  largest angle errors:");
-          for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
-            std::printf(" %s %.1f deg", r.channel_names[order[k]].c_str(), r.channel_errors_deg[order[k]]);
-          }
+          PrintLargest("largest joint errors:", r.joint_names, r.joint_errors_mm, " %s %.1f mm",
+                       [](double mm) { return mm; });
+          PrintLargest("largest angle errors:", r.channel_names, r.channel_errors_deg, " %s %.1f deg",
+                       [](double deg) { return deg; });
           if (!r.channel_gain.empty()) {  // a gain below 1 may be hedging (prior/inference.h)
-            std::sort(order.begin(), order.end(), [&r](size_t x, size_t y) {
-              return std::abs(r.channel_gain[x] - 1) > std::abs(r.channel_gain[y] - 1);
-            });
-            std::printf("\n  gains furthest from 1:");
-            for (size_t k = 0; k < std::min<size_t>(5, order.size()); ++k) {
-              std::printf(" %s %.2f", r.channel_names[order[k]].c_str(), r.channel_gain[order[k]]);
-            }
+            PrintLargest("gains furthest from 1:", r.channel_names, r.channel_gain, " %s %.2f",
+                         [](double gain) { return std::abs(gain - 1); });
           }
-          std::printf("\n");
         }
         std::fflush(stdout);
         if (total > 1) line.Update(done, total, "cases");
