@@ -19,8 +19,10 @@
 //     fraction of the mean latent step between consecutive training poses, so models with
 //     different latent scales are treated alike;
 //   PCA, GPLVM: a Gaussian fitted to the training latent points (per dimension).
-// Every term is a squared residual, so Levenberg-Marquardt (Ceres) solves it: on the test
-// split 10 iterations reach the error 200 L-BFGS iterations did (34.6 vs 35.1 mm, ML-JGPM).
+// Every term is a squared residual, so Levenberg-Marquardt solves it: on the test split 10
+// iterations reach the error 200 L-BFGS iterations did (34.6 vs 35.1 mm, ML-JGPM). The
+// iteration is Ceres's; the linear solve is prior/chain_least_squares.h's, which eliminates
+// the frames' chain before the style's dense border (Ceres's own solvers cannot).
 // The frames' mean poses and Jacobians are computed in one batch per evaluation.
 //
 // Initialisation: each x_t starts at the latent point of the training pose nearest to
@@ -49,11 +51,12 @@
 // model's walk more: d is adapted_dynamics_tolerance (0.25 mean steps; on the test split
 // subject 07 43.0 -> 40.1 mm, 35/39 17.4 either way; without adaptation 0.25 is worse,
 // 34.8 -> 35.8 mm; with the gain, 0.5 is worse too: 07 33.8 mm, left side missing 81.7
-// against 57.4). J^T J stays sparse: block tridiagonal plus a border of 2 D columns.
-// An adapted iteration costs more (the border in the linear solve; fewer rejected steps,
-// so more Jacobians): 12 of them take 32-43% longer than 15 plain ones (19-29% with the
-// offset alone; prior_benchmark BM_InferCycle). Fewer cost accuracy: 10 iterations leave
-// subject 07 with a missing left leg at 46.4 mm against 45.2, 8 at 50.0.
+// against 57.4). J^T J is block tridiagonal plus a border of 2 D columns. An adapted
+// iteration costs more (the border's elimination; fewer rejected steps, so more Jacobians):
+// 12 of them take 15-16% longer than 15 plain ones (prior_benchmark BM_InferCycle; 30-37%
+// with Ceres's sparse normal Cholesky, which factors the border generically). Fewer cost
+// accuracy: 10 iterations leave subject 07 with a missing left leg at 46.4 mm against
+// 45.2, 8 at 50.0.
 #pragma once
 
 #include <memory>
@@ -62,6 +65,7 @@
 
 #include <Eigen/Core>
 
+#include "prior/chain_least_squares.h"
 #include "prior/gait_model.h"
 #include "prior/posture_prior.h"
 #include "prior/termination.h"
@@ -102,10 +106,10 @@ struct InferenceResult {
   // How Levenberg-Marquardt ended. On a numerical failure the latent points are the last
   // ones it could evaluate (the start, if none).
   Termination termination = Termination::kNoConvergence;
-  std::string message;             // Ceres's
+  std::string message;             // the solver's
 };
 
-// E(X) for one observed sequence, as a Ceres problem. References `model`, which must
+// E(X) for one observed sequence, as chain least squares (prior/chain_least_squares.h). References `model`, which must
 // outlive it. InputError for bad options, observations of the wrong size, non-finite
 // observed values or no observed channel.
 class SequenceProblem {
@@ -119,9 +123,16 @@ class SequenceProblem {
   // E at `latent` (T x 3) and, when adapting, the offset `posture_deg` (D; empty: zero) and
   // gains `gain` (D; empty: ones); with `gradient`, also dE/dX (T x 3), with the others
   // dE/d delta and dE/dg.
-  double Evaluate(const Eigen::MatrixXd& latent, Eigen::MatrixXd* gradient);
+  double Evaluate(const Eigen::MatrixXd& latent, Eigen::MatrixXd* gradient) const;
   double Evaluate(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg, const Eigen::VectorXd& gain,
-                  Eigen::MatrixXd* gradient, Eigen::VectorXd* posture_gradient, Eigen::VectorXd* gain_gradient);
+                  Eigen::MatrixXd* gradient, Eigen::VectorXd* posture_gradient, Eigen::VectorXd* gain_gradient) const;
+  // The residuals r (E = 1/2 |r|^2, in the order of prior/inference.cc) and the Gauss-Newton
+  // normal equations J^T J, J^T r over p = (x_1 .. x_T, delta_1, g_1 - 1, ..., delta_D,
+  // g_D - 1), the style only when adapting. For tests; Solve uses them.
+  Eigen::VectorXd Residuals(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg,
+                            const Eigen::VectorXd& gain) const;
+  ChainNormalEquations NormalEquations(const Eigen::MatrixXd& latent, const Eigen::VectorXd& posture_deg,
+                                       const Eigen::VectorXd& gain) const;
   // Minimises E from `initial_latent`, the style starting at zero offset and unit gains.
   InferenceResult Solve(const Eigen::MatrixXd& initial_latent);
 

@@ -412,6 +412,58 @@ TEST(InferencePosture, EnergyGradientMatchesFiniteDifferences) {
   }
 }
 
+// The Gauss-Newton normal equations the solver uses, against a central-difference Jacobian
+// J of the residual vector r: J^T J, J^T r and 1/2 |r|^2 (= E), with and without the
+// style, for a model with dynamics and one with the Gaussian latent prior. Every block
+// outside the chain's pattern (A block tridiagonal, any border) is zero in J^T J.
+TEST(InferencePosture, NormalEquationsMatchFiniteDifferenceJacobian) {
+  for (ModelKind kind : {ModelKind::kPca, ModelKind::kGpdm}) {
+    for (const bool adapt : {false, true}) {
+      SCOPED_TRACE(std::string(ModelKindName(kind)) + (adapt ? " adapted" : " plain"));
+      const GaitModel& model = PeopleModel(kind);
+      const int channels = model.NumChannels(), t = 6;
+      PoseObservations o;
+      o.poses_deg = ModelCycle(model, 1).topRows(t) + Eigen::MatrixXd::Random(t, channels);
+      o.observed = EveryThirdMissing(channels);
+      InferenceOptions options = Adapting();
+      options.adapt_posture = adapt;
+      const SequenceProblem energy(model, o, options);
+      const Eigen::MatrixXd x = model.latent().middleRows(3, t) + 0.05 * Eigen::MatrixXd::Random(t, 3);
+      const Eigen::VectorXd delta = adapt ? Eigen::VectorXd(2 * Eigen::VectorXd::Random(channels)) : Eigen::VectorXd();
+      const Eigen::VectorXd gain =
+          adapt ? Eigen::VectorXd(Eigen::VectorXd::Ones(channels) + 0.2 * Eigen::VectorXd::Random(channels))
+                : Eigen::VectorXd();
+      const Eigen::VectorXd r = energy.Residuals(x, delta, gain);
+      const int m = adapt ? 2 * channels : 0, n = 3 * t + m;
+      // p's layout: x row by row, then (delta_k, g_k - 1) per channel.
+      auto residuals_at = [&](int i, double step) {
+        Eigen::MatrixXd xs = x;
+        Eigen::VectorXd ds = delta, gs = gain;
+        if (i < 3 * t) xs(i / 3, i % 3) += step;
+        else if ((i - 3 * t) % 2 == 0) ds[(i - 3 * t) / 2] += step;
+        else gs[(i - 3 * t) / 2] += step;
+        return energy.Residuals(xs, ds, gs);
+      };
+      const double h = 1e-6;
+      Eigen::MatrixXd j(r.size(), n);
+      for (int i = 0; i < n; ++i) j.col(i) = (residuals_at(i, h) - residuals_at(i, -h)) / (2 * h);
+      const ChainNormalEquations e = energy.NormalEquations(x, delta, gain);
+      ASSERT_EQ(e.NumFrames(), t);
+      ASSERT_EQ(e.BorderSize(), m);
+      EXPECT_NEAR(e.cost, 0.5 * r.squaredNorm(), 1e-12 * r.squaredNorm());
+      EXPECT_NEAR(e.cost, adapt ? energy.Evaluate(x, delta, gain, nullptr, nullptr, nullptr) : energy.Evaluate(x, nullptr),
+                  1e-12 * e.cost);
+      const Eigen::MatrixXd expected = j.transpose() * j, analytic = e.Dense();
+      const double scale = expected.cwiseAbs().maxCoeff();
+      EXPECT_LT((analytic - expected).cwiseAbs().maxCoeff(), 1e-6 * scale);
+      const Eigen::VectorXd jr = j.transpose() * r;
+      EXPECT_LT((e.gradient - jr).cwiseAbs().maxCoeff(), 1e-6 * jr.cwiseAbs().maxCoeff());
+      // Frames two or more apart do not couple.
+      EXPECT_EQ(expected.block(0, 6, 3, 3 * t - 6).cwiseAbs().maxCoeff(), 0.0);
+    }
+  }
+}
+
 // A training cycle with a known offset added (the oracle: that offset). Every model's
 // poses come far closer to it with adaptation. A model that reproduces its training cycles
 // (the premise, checked: ML-JGPM, within 0.01 deg) gives the offset back, within 15% of
