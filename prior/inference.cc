@@ -51,16 +51,31 @@ bool InferenceOptions::Check(std::string* why) const {
   else if (!(dynamics_tolerance > 0)) problem = "dynamics_tolerance must be > 0";
   else if (!(adapted_dynamics_tolerance > 0)) problem = "adapted_dynamics_tolerance must be > 0";
   else if (!(gain_std > 0)) problem = "gain_std must be > 0";
+  else if (!(common_gain_std >= 0)) problem = "common_gain_std must be >= 0";
   else if (adapt_posture && !posture.Check(&why_posture)) problem = why_posture.c_str();
   else if (max_iterations < 0 || adapted_max_iterations < 0) problem = "max_iterations must be >= 0";
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr;
 }
 
+namespace {
+
+// V with V^T V = (gain_std^2 I + common_gain_std^2 1 1^T)^-1, the gain prior's precision.
+Eigen::MatrixXd GainWhitening(int channels, double gain_std, double common_gain_std) {
+  // (s^2 I + c^2 1 1^T)^-1 = (I - gamma 1 1^T) / s^2 with gamma = c^2 / (s^2 + D c^2), and
+  // V = (I - beta 1 1^T) / s gives V^T V that for 2 beta - D beta^2 = gamma (D gamma < 1).
+  const double s2 = gain_std * gain_std, c2 = common_gain_std * common_gain_std;
+  const double gamma = c2 / (s2 + channels * c2);
+  const double beta = (1 - std::sqrt(1 - channels * gamma)) / channels;
+  return (Eigen::MatrixXd::Identity(channels, channels) - Eigen::MatrixXd::Constant(channels, channels, beta)) / gain_std;
+}
+
+}  // namespace
+
 // E as least squares over p = (x_1 .. x_T, s_1 .. s_D), s_k = (delta_k, g_k - 1) when
 // adapting. The residuals, in order:
 //   frames:   (c_k + g_k (f_k(x_t) - c_k) + delta_k - u_tk) / s_k, observed k of each t
-//   style:    W delta, then (g - 1) / gain_std (adapting only)
+//   style:    W delta, then V (g - 1) (adapting only; V^T V the gain prior's precision)
 //   latent:   (x_t - g(x_{t-1})) / d for t > 1, or (x_t - mean) / std per dimension.
 // Each frame's residuals touch x_t and the style; the dynamics x_{t-1} and x_t: the chain
 // with a border of prior/chain_least_squares.h.
@@ -71,8 +86,13 @@ struct SequenceProblem::Impl : ChainLeastSquares {
         posture(options.adapt_posture
                     ? std::make_unique<PosturePrior>(PosturePrior::FromTrainingSet(model.data().set, options.posture))
                     : nullptr),
-        inverse_gain_std(1 / options.gain_std),
         max_iterations(options.adapt_posture ? options.adapted_max_iterations : options.max_iterations) {
+    if (posture) {
+      const int d = model.NumChannels();
+      offset_precision = posture->whitening().transpose() * posture->whitening();
+      gain_whitening = GainWhitening(d, options.gain_std, options.common_gain_std);
+      gain_precision = gain_whitening.transpose() * gain_whitening;
+    }
     inverse_noise.resize(static_cast<Eigen::Index>(channels.size()));
     for (size_t i = 0; i < channels.size(); ++i) {
       const double noise = o.noise_std_deg.size() ? o.noise_std_deg[channels[i]] : 0.0;
@@ -136,18 +156,18 @@ struct SequenceProblem::Impl : ChainLeastSquares {
     if (posture) {
       const Eigen::MatrixXd& whitening = posture->whitening();
       const Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<2>> delta(style.data(), d), gain_less_one(style.data() + 1, d);
-      const Eigen::VectorXd whitened = whitening * delta;
+      const Eigen::VectorXd whitened = whitening * delta, whitened_gain = gain_whitening * gain_less_one;
       for (Eigen::Index i = 0; i < whitened.size(); ++i) add(whitened[i]);
-      for (int k = 0; k < d; ++k) add(inverse_gain_std * gain_less_one[k]);
+      for (int k = 0; k < d; ++k) add(whitened_gain[k]);
       if (equations) {
-        const Eigen::VectorXd offset_gradient = whitening.transpose() * whitened;
-        const Eigen::MatrixXd offset_hessian = whitening.transpose() * whitening;
-        const double gain_hessian = inverse_gain_std * inverse_gain_std;
+        const Eigen::VectorXd offset_gradient = offset_precision * delta, gain_gradient = gain_precision * gain_less_one;
         for (int k = 0; k < d; ++k) {
           equations->gradient[3 * t + 2 * k] += offset_gradient[k];
-          equations->gradient[3 * t + 2 * k + 1] += gain_hessian * gain_less_one[k];
-          equations->corner(2 * k + 1, 2 * k + 1) += gain_hessian;
-          for (int j = 0; j < d; ++j) equations->corner(2 * k, 2 * j) += offset_hessian(k, j);
+          equations->gradient[3 * t + 2 * k + 1] += gain_gradient[k];
+          for (int j = 0; j < d; ++j) {
+            equations->corner(2 * k, 2 * j) += offset_precision(k, j);
+            equations->corner(2 * k + 1, 2 * j + 1) += gain_precision(k, j);
+          }
         }
       }
     }
@@ -203,7 +223,8 @@ struct SequenceProblem::Impl : ChainLeastSquares {
   const Eigen::MatrixXd observed;   // u, T x D (only `channels` are read)
   const Eigen::VectorXd centre;     // c, the training mean posture
   const std::unique_ptr<const PosturePrior> posture;  // when adapting
-  const double inverse_gain_std;
+  Eigen::MatrixXd offset_precision;  // W^T W, when adapting
+  Eigen::MatrixXd gain_whitening, gain_precision;  // V and V^T V
   const int max_iterations;
   Eigen::VectorXd inverse_noise;    // 1 / s_k of `channels`
   double inverse_tolerance = 0;     // 1 / d, with dynamics

@@ -82,6 +82,7 @@ struct InferenceOptions {
   double adapted_dynamics_tolerance = 0.25;  // d when adapting
   int adapted_max_iterations = 12;           // and its iterations
   double gain_std = 0.15;                    // of the per-channel amplitude gain's prior
+  double common_gain_std = 0.05;             // of the gains' shared part (>= 0; 0: independent)
   PosturePriorOptions posture;  // its prior (from the model's training subjects)
 
   bool Check(std::string* why) const;

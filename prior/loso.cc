@@ -16,6 +16,8 @@ bool LosoOptions::Check(std::string* why) const {
   else if (max_trials_per_subject < 1) problem = "max_trials_per_subject must be >= 1";
   else if (!(max_training_seconds >= 0)) problem = "max_training_seconds must be >= 0";
   else if (threads < 1) problem = "threads must be >= 1";
+  std::string why_inference;
+  if (!problem && !inference.Check(&why_inference)) problem = why_inference.c_str();
   if (problem && why) *why = problem;  // `why` may be null
   return problem == nullptr;
 }
@@ -74,9 +76,8 @@ std::vector<LosoResult> RunLoso(
       const std::unique_ptr<GaitModel> model = model_for(fold, kind);
       const std::vector<ValidationTrial> trials = LoadValidationTrials(fold.test, *model);
       for (const bool adapt : options.adapt) {
-        InferenceOptions inference;
+        InferenceOptions inference = options.inference;
         inference.adapt_posture = adapt;
-        inference.gain_std = options.gain_std;
         results.push_back({fold.subject, kind, adapt, Validate(*model, trials, ValidationCase{}, inference, options.threads)});
         if (progress) progress(results.back(), results.size(), total);
       }

@@ -35,7 +35,7 @@ std::vector<LosoFold> LosoFolds(const GaitDataset& dataset, int max_trials_per_s
 struct LosoOptions {
   std::vector<ModelKind> kinds = {ModelKind::kPca, ModelKind::kJgpm, ModelKind::kMljgpmTorus, ModelKind::kMljgpmCyl};
   std::vector<bool> adapt = {false, true};  // posture adaptation off and/or on
-  double gain_std = InferenceOptions{}.gain_std;  // its gain prior's
+  InferenceOptions inference;  // for every run; adapt_posture is set by `adapt`
   int max_trials_per_subject = 9;
   double max_training_seconds = 0;  // per model; 0: until training ends by itself
   int threads = 1;                  // validation's; training's linear algebra uses them too

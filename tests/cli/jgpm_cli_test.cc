@@ -501,7 +501,18 @@ TEST(JgpmCli, EvalAdaptsPosture) {
   const nlohmann::json w = nlohmann::json::parse(ReadTextFile(json, "json"));
   EXPECT_NEAR(w["mean_error_mm"].get<double>(), wide, 1e-9 * wide);  // one model, one case: the result itself
   EXPECT_GT(std::abs(wide - adapted.mean_error_mm), 1e-6);
-  for (const char* option : {" --adapt size", " --gain-std 0", " --gain-std -1"}) {
+  // And --common-gain-std: 0 gives independent gains.
+  ASSERT_EQ(Jgpm("eval --model " + pca.string() + " --task interpolation --adapt posture --common-gain-std 0 --trials " +
+                 trials.string() + data + " --json " + json.string())
+                .status,
+            0);
+  adapt.gain_std = InferenceOptions{}.gain_std;
+  adapt.common_gain_std = 0;
+  const double independent = Validate(*model, LoadValidationTrials(dataset, *model), ValidationCase{}, adapt).mean_error_mm;
+  EXPECT_NEAR(nlohmann::json::parse(ReadTextFile(json, "json"))["mean_error_mm"].get<double>(), independent,
+              1e-9 * independent);
+  EXPECT_GT(std::abs(independent - adapted.mean_error_mm), 1e-6);
+  for (const char* option : {" --adapt size", " --gain-std 0", " --gain-std -1", " --common-gain-std -0.1"}) {
     const Result bad = Jgpm("eval --model " + pca.string() + " --task interpolation" + option + data);
     EXPECT_EQ(bad.status, 2) << option;
     EXPECT_NE(bad.err.find(std::string(option).substr(1, std::string(option).find(' ', 1) - 1)), std::string::npos) << bad.err;

@@ -45,7 +45,7 @@ struct EvalArguments {
   int draws = 5;
   int threads = 0;
   std::string adapt = "none";
-  double gain_std = InferenceOptions{}.gain_std;
+  InferenceOptions inference;  // --gain-std, --common-gain-std
   std::string kinds = "pca,jgpm,mljgpm-torus,mljgpm-cyl";
   double max_time = 0;
   int max_per_subject = 9;
@@ -112,7 +112,7 @@ void RunLoso(const EvalArguments& a) {
   options.kinds = ParseList<ModelKind>(a.kinds, "--kinds", "a model kind (" + ModelKindList() + ")",
                                       [](const std::string& t, ModelKind* k) { return ParseModelKind(t, k); });
   options.adapt = AdaptModes(a.adapt);
-  options.gain_std = a.gain_std;
+  options.inference = a.inference;
   options.max_trials_per_subject = a.max_per_subject;
   options.max_training_seconds = a.max_time;
   options.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -336,9 +336,8 @@ void RunEval(const EvalArguments& a) {
   std::vector<ModelResults> suite;
   std::vector<std::string> model_paths;
   for (const bool adapt : adapt_modes) {
-    InferenceOptions inference;
+    InferenceOptions inference = a.inference;
     inference.adapt_posture = adapt;
-    inference.gain_std = a.gain_std;
     std::vector<std::string> run_names = names;
     if (adapt) for (std::string& name : run_names) name += "+posture";
     for (size_t m = 0; adapt && m < models.size(); ++m) PrintPosturePrior(run_names[m], *models[m]);
@@ -415,8 +414,12 @@ void AddValidationCommands(CLI::App& app) {
                    "(for people the prior has not seen); both: each model without and with it")
       ->check(CLI::IsMember({"none", "posture", "both"}))
       ->capture_default_str();
-  eval->add_option("--gain-std", a->gain_std, "posture adaptation: std of the per-channel amplitude gain's prior")
+  eval->add_option("--gain-std", a->inference.gain_std, "posture adaptation: std of the per-channel amplitude gain's prior")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  eval->add_option("--common-gain-std", a->inference.common_gain_std,
+                   "posture adaptation: std of the part all channels' gains share (0: independent gains)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   eval->add_option("--events", a->events, "transitions: the event list (default datasets_scripts/transitions.txt)");
   eval->add_option("--methods", a->methods, "transitions: methods, comma-separated")->capture_default_str();
