@@ -31,21 +31,31 @@
 // Posture adaptation (adapt_posture, issue #15): the mean pose gains a per-sequence style, an
 // offset and an amplitude gain per channel, c + g (f(x_t) - c) + delta with c the training
 // mean posture; delta under the training subjects' posture prior (prior/posture_prior.h),
-// g under N(1, gain_std^2); E gains their energies 1/2 |W delta|^2 + 1/2 |(g - 1) / gain_std|^2
-// and both are estimated with X. The estimate is then the styled mean pose on every channel:
-// a channel not observed takes the prior's conditional mean offset given the observed ones
-// and gain 1, not a copy of data it lacks. The gain takes up what an offset cannot: an
-// unseen person's larger or smaller swing (subject 07 at s = 1: 40.2 mm with the offset
-// alone, 32.2 with the gain; 35/39 18.4 -> 14.8). It also hedges: where the model cannot
-// follow a channel's timing, a gain below 1 (a damped swing) is the least-squares answer
-// (07's knee swings 1.10 times the training subjects' mean, its gain comes out 0.61);
-// gains matched to each channel's swing instead leave 07 at 33.1 mm, so ~1 mm of the 8.
+// g under N(1, gain_std^2 I + common_gain_std^2 1 1^T): each channel's own part plus a part
+// all channels share, the person's swing against the model's as a whole. E gains the
+// priors' energies 1/2 |W delta|^2 + 1/2 |V (g - 1)|^2 (W, V their whitenings) and both are
+// estimated with X. The estimate is then the styled mean pose on every channel: a channel
+// not observed takes the priors' conditional means given the observed ones (an offset
+// carried by the posture prior's correlations, a gain near the observed gains' mean), not
+// a copy of data it lacks. The gain takes up what an offset cannot: an unseen person's
+// larger or smaller swing (subject 07 at s = 1: 40.2 mm with the offset alone, 31.8 with
+// the gains; 35/39 18.4 -> 14.0). It also hedges: where the model cannot follow a channel's
+// timing, a gain below 1 (a damped swing) is the least-squares answer (07's knee swings
+// 1.10 times the training subjects' mean, its gain comes out 0.61 with independent gains);
+// gains matched to each channel's swing instead leave 07 at 33.1 mm against 32.2, so ~1 mm
+// of the 8. The shared part trades against the latent stride (scaling every channel alike
+// is what the model's layers do), so its value is the priors' choice more than the data's;
+// what it buys is that a missing limb swings with the rest of the body: with independent
+// gains (common_gain_std 0) 07's missing left leg was 45.2 mm, with the shared part 37.5.
 // gain_std is one value for every channel (the subjects' amplitudes differ by a log-ratio
 // std of 0.05-0.12 on hip and knee flexion but ~0.5-1 on the arms, and a gain that free on
-// the observed half of a body trades against the latent phase), chosen by leave one
-// subject out over the default split's training subjects alone
-// (datasets_scripts/choose_gain_std.sh: 0.15 of {0.05, ..., 0.5}). delta
-// starts at 0 (starting it at the offset the nearest training poses imply, and the latent
+// the observed half of a body trades against the latent phase). Both are chosen by leave
+// one subject out over the default split's training subjects alone
+// (datasets_scripts/choose_gain_std.sh): gain_std 0.15 of {0.05, ..., 0.5}, the smallest
+// mean; common_gain_std 0.05 of {0, 0.05, ..., 1}, the smallest within one standard error
+// of the best (the scores are flat from 0.05 up; 0 is 2.7 mm worse than 0.05, on every
+// held-out subject).
+// delta starts at 0 (starting it at the offset the nearest training poses imply, and the latent
 // points at the nearest poses of the observations less it, ended worse: subject 07 45.3
 // against 43.0 mm). With the offset free, the latent points follow the data less and the
 // model's walk more: d is adapted_dynamics_tolerance (0.25 mean steps; on the test split
@@ -55,8 +65,8 @@
 // iteration costs more (the border's elimination; fewer rejected steps, so more Jacobians):
 // 12 of them take 15-16% longer than 15 plain ones (prior_benchmark BM_InferCycle; 30-37%
 // with Ceres's sparse normal Cholesky, which factors the border generically). Fewer cost
-// accuracy: 10 iterations leave subject 07 with a missing left leg at 46.4 mm against
-// 45.2, 8 at 50.0.
+// accuracy (with independent gains: 10 iterations left subject 07 with a missing left leg
+// at 46.4 mm against 45.2, 8 at 50.0).
 #pragma once
 
 #include <memory>
