@@ -63,7 +63,8 @@ namespace {
 // V with V^T V = (gain_std^2 I + common_gain_std^2 1 1^T)^-1, the gain prior's precision.
 Eigen::MatrixXd GainWhitening(int channels, double gain_std, double common_gain_std) {
   // (s^2 I + c^2 1 1^T)^-1 = (I - gamma 1 1^T) / s^2 with gamma = c^2 / (s^2 + D c^2), and
-  // V = (I - beta 1 1^T) / s gives V^T V that for 2 beta - D beta^2 = gamma (D gamma < 1).
+  // V = (I - beta 1 1^T) / s has V^T V = (I - (2 beta - D beta^2) 1 1^T) / s^2: the root
+  // of 2 beta - D beta^2 = gamma (real, as D gamma < 1).
   const double s2 = gain_std * gain_std, c2 = common_gain_std * common_gain_std;
   const double gamma = c2 / (s2 + channels * c2);
   const double beta = (1 - std::sqrt(1 - channels * gamma)) / channels;
