@@ -140,7 +140,9 @@ ChainSolveSummary MinimizeChain(ChainLeastSquares& problem, int max_iterations, 
     invalid_steps = 0;
     candidate = *p + step;
     double candidate_cost = 0;
-    if (!problem.Cost(candidate, &candidate_cost) || !std::isfinite(candidate_cost)) candidate_cost = std::numeric_limits<double>::max();
+    if (!problem.Cost(candidate, &candidate_cost) || !std::isfinite(candidate_cost)) {
+      candidate_cost = std::numeric_limits<double>::max();  // a rejected step
+    }
     // A step that only shows convergence is not counted (nor is it by Ceres).
     if (step.norm() <= kParameterTolerance * (p->norm() + kParameterTolerance)) {
       --summary.iterations;
