@@ -52,7 +52,9 @@ bool SolveChainNormalEquations(const ChainNormalEquations& e, const Eigen::Vecto
   entries.reserve(6 * n + 9 * std::max(t - 1, 0));
   for (int f = 0; f < t; ++f) {
     for (int j = 0; j < 3; ++j) {
-      for (int i = j; i < 3; ++i) entries.emplace_back(3 * f + i, 3 * f + j, e.diagonal[f](i, j) + (i == j ? damping[3 * f + i] : 0));
+      for (int i = j; i < 3; ++i) {
+        entries.emplace_back(3 * f + i, 3 * f + j, e.diagonal[f](i, j) + (i == j ? damping[3 * f + i] : 0));
+      }
     }
     if (f > 0) {
       for (int j = 0; j < 3; ++j) {
