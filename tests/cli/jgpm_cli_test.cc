@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -464,10 +465,11 @@ TEST(JgpmCli, EvalAdaptsPosture) {
                         trials.string() + data + " --json " + json.string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("pca+posture"), std::string::npos) << r.out;
-  const size_t gains = r.out.find("gains furthest from 1:");  // printed for the adapted run only
+  const size_t gains = r.out.find("gains (mean ");  // printed for the adapted run only
   ASSERT_NE(gains, std::string::npos) << r.out;
   EXPECT_GT(gains, r.out.find("pca+posture")) << r.out;
-  EXPECT_EQ(r.out.find("gains furthest from 1:", gains + 1), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("gains (mean ", gains + 1), std::string::npos) << r.out;
+  const double printed_mean = std::stod(r.out.substr(gains + std::string("gains (mean ").size()));
   const nlohmann::json j = nlohmann::json::parse(ReadTextFile(json, "json"));
   ASSERT_EQ(j["models"].size(), 2u);
   EXPECT_EQ(j["models"][0]["name"], "pca");
@@ -490,6 +492,10 @@ TEST(JgpmCli, EvalAdaptsPosture) {
     EXPECT_NEAR(a["per_channel_deg"][k]["gain"].get<double>(), adapted.channel_gain[k], 1e-9);
   }
   EXPECT_GT(*std::max_element(adapted.channel_gain.begin(), adapted.channel_gain.end()), 1.01);  // gains moved
+  // The printed level is the channels' mean gain.
+  EXPECT_NEAR(printed_mean,
+              std::accumulate(adapted.channel_gain.begin(), adapted.channel_gain.end(), 0.0) / model->NumChannels(),
+              0.006);
   EXPECT_FALSE(j["models"][0]["results"][0]["per_channel_deg"][0].contains("posture_offset_deg"));
   // --gain-std reaches the inference: the library's result with that prior.
   ASSERT_EQ(Jgpm("eval --model " + pca.string() + " --task interpolation --adapt posture --gain-std 0.3 --trials " +

@@ -1,6 +1,7 @@
 #include "tracker/cli/validation_commands.h"
 
 #include <algorithm>
+#include <numeric>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -356,9 +357,15 @@ void RunEval(const EvalArguments& a) {
                        [](double mm) { return mm; });
           PrintLargest("largest angle errors:", r.channel_names, r.channel_errors_deg, " %s %.1f deg",
                        [](double deg) { return deg; });
-          if (!r.channel_gain.empty()) {  // a gain below 1 may be hedging (prior/inference.h)
-            PrintLargest("gains furthest from 1:", r.channel_names, r.channel_gain, " %s %.2f",
-                         [](double gain) { return std::abs(gain - 1); });
+          if (!r.channel_gain.empty()) {
+            // Their common level trades against the latent stride, so what stands out is a
+            // channel's distance from it (a low one may be hedging; prior/inference.h).
+            const double mean = std::accumulate(r.channel_gain.begin(), r.channel_gain.end(), 0.0) /
+                                static_cast<double>(r.channel_gain.size());
+            char label[64];
+            std::snprintf(label, sizeof label, "gains (mean %.2f) furthest from their mean:", mean);
+            PrintLargest(label, r.channel_names, r.channel_gain, " %s %.2f",
+                         [mean](double gain) { return std::abs(gain - mean); });
           }
         }
         std::fflush(stdout);
