@@ -47,7 +47,7 @@ done
 best=$(tail -n +2 "$out/gain_std.csv" | sort -t, -k6 -g | head -1 | cut -d, -f1)
 echo "best gain_std: $best (InferenceOptions::gain_std; jgpm eval --gain-std)"
 
-echo "common_gain_std,$(echo $subjects | tr ' ' ','),mean" | tee "$out/common_gain_std.csv"
+echo "common_gain_std,$(paste -sd, <<<"$subjects"),mean" | tee "$out/common_gain_std.csv"
 for t in 0 0.05 0.1 0.2 0.3 0.5 1; do
   row="$t"
   for s in $subjects; do
