@@ -83,7 +83,7 @@ Eigen::MatrixXd GainWhitening(int channels, double gain_std, double common_gain_
 struct SequenceProblem::Impl : ChainLeastSquares {
   Impl(const GaitModel& model, const PoseObservations& o, const InferenceOptions& options)
       : model(model), t(static_cast<int>(o.poses_deg.rows())), channels(ObservedChannels(model, o)),
-        observed(o.poses_deg), centre(model.data().set.mean.transpose()),
+        observed(o.poses_deg),
         posture(options.adapt_posture
                     ? std::make_unique<PosturePrior>(PosturePrior::FromTrainingSet(model.data().set, options.posture))
                     : nullptr),
@@ -130,6 +130,7 @@ struct SequenceProblem::Impl : ChainLeastSquares {
     std::array<Eigen::MatrixXd, 3> jacobians;
     const Eigen::MatrixXd poses = model.MeanPoses(latent, equations ? &jacobians : nullptr);
     if (equations) equations->Reset(t, m);
+    const Eigen::RowVectorXd& centre = model.data().set.mean;  // c
     std::vector<double> r;
     double cost = 0;
     auto add = [&](double value) {
@@ -222,7 +223,6 @@ struct SequenceProblem::Impl : ChainLeastSquares {
   const int t;
   const std::vector<int> channels;  // observed
   const Eigen::MatrixXd observed;   // u, T x D (only `channels` are read)
-  const Eigen::VectorXd centre;     // c, the training mean posture
   const std::unique_ptr<const PosturePrior> posture;  // when adapting
   Eigen::MatrixXd offset_precision;  // W^T W, when adapting
   Eigen::MatrixXd gain_whitening, gain_precision;  // V and V^T V

@@ -184,12 +184,9 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   const auto start = std::chrono::steady_clock::now();
   const int n = static_cast<int>(trials.size());
   const int draws = c.task == ValidationTask::kFiltering ? c.draws : 1;
-  // errors[i * draws + k]: trial i, draw k. Workers take trials by index, so the result is
-  // the same for any number of threads.
-  std::vector<double> errors(static_cast<size_t>(n) * draws);
-  std::vector<PoseErrors> details(errors.size());
-  std::vector<Eigen::VectorXd> postures(errors.size()), gains(errors.size());
-  std::vector<char> failed(errors.size(), 0);
+  // outcomes[i * draws + k]: trial i, draw k. Workers take trials by index, so the result
+  // is the same for any number of threads.
+  std::vector<TrialOutcome> outcomes(static_cast<size_t>(n) * draws);
   // Any exception in a worker is carried to this thread and rethrown there (the first
   // trial's, so which one is reported does not depend on the thread count); an escaping
   // exception would end the process.
@@ -197,14 +194,7 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
   auto work = [&](int worker, int workers) {
     for (int i = worker; i < n; i += workers) {
       try {
-        for (int k = 0; k < draws; ++k) {
-          const TrialOutcome outcome = TrialError(model, trials[i], i, c, k + 1, inference);
-          errors[i * draws + k] = outcome.errors.mean_mm;
-          details[i * draws + k] = outcome.errors;
-          postures[i * draws + k] = outcome.posture_deg;
-          gains[i * draws + k] = outcome.gain;
-          failed[i * draws + k] = outcome.failed;
-        }
+        for (int k = 0; k < draws; ++k) outcomes[i * draws + k] = TrialError(model, trials[i], i, c, k + 1, inference);
       } catch (...) {
         failures[i] = std::current_exception();
       }
@@ -230,20 +220,24 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
 
   ValidationResult result;
   result.validation_case = c;
+  auto error = [&](int i, int k) { return outcomes[i * draws + k].errors.mean_mm; };
   for (int i = 0; i < n; ++i) {
     result.trials.push_back(trials[i].id);
-    result.trial_errors_mm.push_back(Mean(std::vector<double>(errors.begin() + i * draws, errors.begin() + (i + 1) * draws)));
+    double sum = 0;
+    for (int k = 0; k < draws; ++k) sum += error(i, k);
+    result.trial_errors_mm.push_back(sum / draws);
   }
   result.mean_error_mm = Mean(result.trial_errors_mm);
   // Per joint and channel: the mean over trials and draws, as mean_error_mm is.
-  Eigen::VectorXd joint_mm = Eigen::VectorXd::Zero(details[0].joint_mm.size());
-  Eigen::VectorXd channel_deg = Eigen::VectorXd::Zero(details[0].channel_deg.size());
+  Eigen::VectorXd joint_mm = Eigen::VectorXd::Zero(outcomes[0].errors.joint_mm.size());
+  Eigen::VectorXd channel_deg = Eigen::VectorXd::Zero(outcomes[0].errors.channel_deg.size());
   Eigen::VectorXd posture_deg = Eigen::VectorXd::Zero(channel_deg.size()), gain = posture_deg;
-  for (size_t i = 0; i < details.size(); ++i) {
-    joint_mm += details[i].joint_mm / static_cast<double>(details.size());
-    channel_deg += details[i].channel_deg / static_cast<double>(details.size());
-    posture_deg += postures[i] / static_cast<double>(details.size());
-    gain += gains[i] / static_cast<double>(details.size());
+  const double count = static_cast<double>(outcomes.size());
+  for (const TrialOutcome& o : outcomes) {
+    joint_mm += o.errors.joint_mm / count;
+    channel_deg += o.errors.channel_deg / count;
+    posture_deg += o.posture_deg / count;
+    gain += o.gain / count;
   }
   for (int j = 1; j < static_cast<int>(GaitJoints().size()); ++j) result.joint_names.emplace_back(GaitJoints()[j].name);
   result.channel_names = model.data().set.channel_names;
@@ -253,11 +247,12 @@ ValidationResult Validate(const GaitModel& model, const std::vector<ValidationTr
     result.channel_posture_deg.assign(posture_deg.data(), posture_deg.data() + posture_deg.size());
     result.channel_gain.assign(gain.data(), gain.data() + gain.size());
   }
-  result.inference_failures = static_cast<int>(std::count(failed.begin(), failed.end(), 1));
+  result.inference_failures =
+      static_cast<int>(std::count_if(outcomes.begin(), outcomes.end(), [](const TrialOutcome& o) { return o.failed; }));
   if (c.task == ValidationTask::kFiltering) {
     for (int k = 0; k < draws; ++k) {
       double sum = 0;
-      for (int i = 0; i < n; ++i) sum += errors[i * draws + k];
+      for (int i = 0; i < n; ++i) sum += error(i, k);
       result.draw_errors_mm.push_back(sum / n);
     }
     result.std_error_mm = StdDev(result.draw_errors_mm);

@@ -110,14 +110,19 @@ ChainResiduals RandomChain(int frames, int border, std::mt19937& rng) {
   return chain;
 }
 
+// The chain's residuals as one Ceres block on the parameters at `p`.
+void AddChain(const ChainResiduals& chain, double* p, ceres::Problem* problem) {
+  auto* cost = new ceres::DynamicAutoDiffCostFunction<ChainResiduals>(new ChainResiduals(chain));
+  cost->AddParameterBlock(3 * chain.frames + chain.border);
+  cost->SetNumResiduals(chain.NumResiduals());
+  problem->AddResidualBlock(cost, nullptr, p);
+}
+
 // The chain problem through Ceres's Jacobian (evaluated by the Ceres problem itself).
 class ViaCeres : public ChainLeastSquares {
  public:
   ViaCeres(const ChainResiduals& chain) : chain_(chain), p_(3 * chain.frames + chain.border) {
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<ChainResiduals>(new ChainResiduals(chain));
-    cost->AddParameterBlock(static_cast<int>(p_.size()));
-    cost->SetNumResiduals(chain.NumResiduals());
-    problem_.AddResidualBlock(cost, nullptr, p_.data());
+    AddChain(chain, p_.data(), &problem_);
   }
   int NumFrames() const override { return chain_.frames; }
   int BorderSize() const override { return chain_.border; }
@@ -169,10 +174,7 @@ TEST(ChainLeastSquares, TakesCeressStepsToCeressMinimum) {
       const ChainSolveSummary summary = MinimizeChain(problem, iterations, &ours);
 
       ceres::Problem reference;
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<ChainResiduals>(new ChainResiduals(chain));
-      cost->AddParameterBlock(n);
-      cost->SetNumResiduals(chain.NumResiduals());
-      reference.AddResidualBlock(cost, nullptr, theirs.data());
+      AddChain(chain, theirs.data(), &reference);
       ceres::Solver::Options options;
       options.max_num_iterations = iterations;
       options.linear_solver_type = ceres::DENSE_QR;

@@ -319,6 +319,12 @@ const GaitModel& PeopleModel(ModelKind kind) {
   return *model;
 }
 
+// The gain prior's covariance, written out: gain_std^2 I + common_gain_std^2 1 1^T.
+Eigen::MatrixXd GainCovariance(int channels, const InferenceOptions& options) {
+  return std::pow(options.gain_std, 2) * Eigen::MatrixXd::Identity(channels, channels) +
+         Eigen::MatrixXd::Constant(channels, channels, std::pow(options.common_gain_std, 2));
+}
+
 InferenceOptions Adapting() {
   InferenceOptions options;
   options.adapt_posture = true;
@@ -357,9 +363,7 @@ TEST(InferencePosture, EnergyMatchesItsDefinition) {
     }
     const PosturePrior prior = PosturePrior::FromTrainingSet(model.data().set);
     const Eigen::VectorXd a = gain.array() - 1;
-    const Eigen::MatrixXd gain_covariance =
-        std::pow(options.gain_std, 2) * Eigen::MatrixXd::Identity(channels, channels) +
-        Eigen::MatrixXd::Constant(channels, channels, std::pow(options.common_gain_std, 2));
+    const Eigen::MatrixXd gain_covariance = GainCovariance(channels, options);
     const double posture = 0.5 * delta.dot(prior.covariance().ldlt().solve(delta)) + 0.5 * a.dot(gain_covariance.ldlt().solve(a));
     InferenceOptions plain = options;
     plain.adapt_posture = false;
@@ -591,9 +595,7 @@ TEST(InferencePosture, MissingChannelsTakeThePriorsConditionalMean) {
   EXPECT_GT(r.posture_deg(obs).mean(), 2.0);  // the premise: an offset was found
   EXPECT_LT((r.posture_deg(mis) - expected).cwiseAbs().maxCoeff(), 1e-3 * r.posture_deg(obs).cwiseAbs().maxCoeff());
   // The gains: their shared part carries over; without it (c = 0) the missing ones stay 1.
-  const double s2 = std::pow(Adapting().gain_std, 2), c2 = std::pow(Adapting().common_gain_std, 2);
-  const Eigen::MatrixXd gain_covariance =
-      s2 * Eigen::MatrixXd::Identity(channels, channels) + Eigen::MatrixXd::Constant(channels, channels, c2);
+  const Eigen::MatrixXd gain_covariance = GainCovariance(channels, Adapting());
   const Eigen::VectorXd a = r.gain.array() - 1;
   const Eigen::VectorXd expected_gain =
       gain_covariance(mis, obs) * gain_covariance(obs, obs).ldlt().solve(Eigen::VectorXd(a(obs)));
