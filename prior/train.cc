@@ -12,14 +12,6 @@
 namespace jgpm {
 namespace {
 
-std::vector<Sequence> Sequences(const TrainingSet& set) {
-  std::vector<Sequence> sequences;
-  for (int s = 0; s < set.NumLayers() * set.NumGaits(); ++s) {
-    sequences.push_back({s * set.poses_per_gait, set.poses_per_gait});
-  }
-  return sequences;
-}
-
 // Leading three right singular vectors of the normalised poses: the eigenvectors of the
 // D x D matrix Y^T Y with the largest eigenvalues (ascending order from the solver).
 Eigen::MatrixXd PrincipalBasis(const Eigen::MatrixXd& y) {
@@ -35,6 +27,14 @@ Eigen::MatrixXd PrincipalBasis(const Eigen::MatrixXd& y) {
 }
 
 }  // namespace
+
+std::vector<Sequence> TrainingSequences(const TrainingSet& set) {
+  std::vector<Sequence> sequences;
+  for (int s = 0; s < set.NumLayers() * set.NumGaits(); ++s) {
+    sequences.push_back({s * set.poses_per_gait, set.poses_per_gait});
+  }
+  return sequences;
+}
 
 ReferenceSkeleton ChooseReferenceSkeleton(const GaitDataset& dataset, const std::filesystem::path& data_root) {
   for (const GaitTrial& trial : dataset.trials) {
@@ -120,7 +120,7 @@ std::unique_ptr<GaitModel> TrainGaitModel(TrainingSet training_set, const std::s
     data.params = start;
   }
 
-  const GpObjective objective(set.y, Sequences(set), spec.topology ? &topology : nullptr, data.terms);
+  const GpObjective objective(set.y, TrainingSequences(set), spec.topology ? &topology : nullptr, data.terms);
   const bool budget_set = options.budget.max_seconds > 0 || options.budget.interrupted;
   if (options.learning == Learning::kSparse) {
     if (options.inducing > set.NumPoints()) {

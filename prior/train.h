@@ -42,6 +42,9 @@ struct ReferenceSkeleton {
   std::string asf;    // ASF text
 };
 
+// The training set's motion sequences: one per layer and gait (its gait cycle).
+std::vector<Sequence> TrainingSequences(const TrainingSet& set);
+
 // The first clean trial's skeleton, its ASF read from `data_root` (a dataset's own
 // data_root, or the one given). InputError when no trial is clean or the ASF is missing.
 ReferenceSkeleton ChooseReferenceSkeleton(const GaitDataset& dataset, const std::filesystem::path& data_root);

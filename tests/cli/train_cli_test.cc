@@ -1,7 +1,7 @@
 // `jgpm train` options that must do what the README says: --max-iterations bounds both
 // learnings, a prepared --dataset needs no data root of its own, and --start continues
 // from a model's parameters (or refuses a model of another kind); and `jgpm bench
-// learning`, whose figures are the objective the library evaluates.
+// learning` and `jgpm bench inducing`, whose figures are what the library evaluates.
 #include <cstdio>
 #include <sstream>
 
@@ -11,7 +11,9 @@
 
 #include "io/json_file.h"
 #include "io/text_reader.h"
+#include "prior/inducing_gap.h"
 #include "prior/learning_scaling.h"
+#include "prior/model_file.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -123,6 +125,52 @@ TEST(TrainCli, BenchLearningTimesWhatTheLibraryEvaluates) {
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err, "jgpm: error: --m 61: expected 3 <= M <= N (60)\n");
   EXPECT_FALSE(fs::exists(dir.path() / "bad" / "scaling.csv"));
+}
+
+TEST(TrainCli, BenchInducingReportsTheLibrarysBound) {
+  test::TempDir dir;
+  const fs::path model = dir.path() / "gpdm.json";
+  test::CommandResult r = test::RunJgpm("train --model gpdm --max-iterations 20 --dataset " + Dataset().string() +
+                                        " --out " + model.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  // M above N (600) is capped at N, and a repeated M is measured once.
+  r = test::RunJgpm("bench inducing --model " + model.string() + " --m 100,20,700,100 --threads 1 --out " +
+                    (dir.path() / "gap").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const InducingGapReport expected = MeasureInducingGap(*ReadModelFile(model), {20, 100, 600});
+  std::istringstream lines(ReadTextFile(dir.path() / "gap" / "inducing_gap.csv", "gap"));
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "m,bound,exact,gap,relative_gap,mapping_gap,dynamics_gap,seconds_per_evaluation,"
+                  "exact_seconds_per_evaluation,mean_error_deg,exact_mean_error_deg,seconds_per_mean_pose,"
+                  "exact_seconds_per_mean_pose");
+  for (const InducingGapPoint& e : expected.points) {
+    ASSERT_TRUE(std::getline(lines, line));
+    int m = 0;
+    double bound = 0, exact = 0, gap = 0, relative = 0, mapping = 0, dynamics = 0, seconds = 0, exact_seconds = 0;
+    double error = 0, exact_error = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &m, &bound, &exact, &gap,
+                          &relative, &mapping, &dynamics, &seconds, &exact_seconds, &error, &exact_error),
+              11)
+        << line;
+    EXPECT_EQ(m, e.m);
+    EXPECT_NEAR(bound, e.bound, 1e-9 * std::abs(e.bound) + 1e-6) << line;
+    EXPECT_NEAR(exact, expected.exact, 1e-9 * std::abs(expected.exact) + 1e-6);
+    EXPECT_NEAR(gap, e.gap(), 1e-6 * std::abs(expected.exact)) << line;
+    EXPECT_NEAR(error, e.mean_error_deg, 1e-5 * e.mean_error_deg) << line;  // printed to 7 digits
+    EXPECT_NEAR(exact_error, expected.exact_mean_error_deg, 1e-5 * expected.exact_mean_error_deg) << line;
+  }
+  EXPECT_FALSE(std::getline(lines, line)) << line;
+  // Too few inducing inputs, or a model without a GP: one line, nothing written.
+  r = test::RunJgpm("bench inducing --model " + model.string() + " --m 2 --out " + (dir.path() / "bad").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "jgpm: error: --m 2: expected at least 3 inducing inputs\n");
+  const fs::path pca = dir.path() / "pca.json";
+  ASSERT_EQ(test::RunJgpm("train --model pca --dataset " + Dataset().string() + " --out " + pca.string()).status, 0);
+  r = test::RunJgpm("bench inducing --model " + pca.string() + " --out " + (dir.path() / "bad").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err, "jgpm: error: model: pca has no GP to make sparse\n");
+  EXPECT_FALSE(fs::exists(dir.path() / "bad"));
 }
 
 }  // namespace

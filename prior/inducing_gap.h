@@ -1,0 +1,56 @@
+// How many inducing inputs a learned GP model needs (issue #17): the inducing-point bound
+// (prior/sparse_gp.h) at the model's own latent points and hyper-parameters, against its
+// exact objective, as M grows, and what one evaluation costs each way.
+//
+// The inducing inputs are chosen greedily, by pivoted Cholesky of each GP's noise-free
+// kernel over its inputs (LAPACK dpstrf): each next one is the input the previous ones
+// explain worst, the usual near-optimal subset (Fine & Scheinberg 2001; Burt, Rasmussen &
+// van der Wilk 2019 bound the gap this leaves). The bound is therefore about as tight as
+// M inputs placed at latent points can make it for these parameters; optimising them can
+// tighten it only a little further. The gap says whether sparse learning could reach this
+// model's objective with M inputs at all: the bound's trace term c/(2 sigma^2) tr(K - Q)
+// grows as the noise sigma^2 shrinks, so nearly noise-free poses need many inputs.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "prior/gait_model.h"
+
+namespace jgpm {
+
+// Row order of greedy pivoted Cholesky of the symmetric positive semi-definite `k` (only
+// its lower triangle is read): row order[j] has the largest diagonal of the residual
+// K - K_:S K_SS^-1 K_S: after the rows S = order[0..j-1]. All rows, each once; past the
+// numerical rank the order is the factorisation's.
+std::vector<int> GreedyPivotOrder(const Eigen::MatrixXd& k);
+
+struct InducingGapPoint {
+  int m = 0;                   // inducing inputs per GP (the dynamics GP: at most its inputs)
+  double bound = 0;            // the sparse objective (an upper bound on the exact one)
+  double mapping_gap = 0;      // bound minus exact, mapping term
+  double dynamics_gap = 0;     // bound minus exact, dynamics term (0 without dynamics)
+  double seconds = 0;          // one evaluation with gradient, the faster of two
+  // Predictions through the inducing inputs (the mapping's posterior mean
+  // K_xu (sigma^2 K_uu + K_un K_nu)^-1 K_un Y): their mean absolute error against the
+  // training poses at the training latent points, degrees, and the time of one mean pose.
+  double mean_error_deg = 0;
+  double mean_seconds = 0;
+  double gap() const { return mapping_gap + dynamics_gap; }
+};
+
+struct InducingGapReport {
+  double exact = 0;            // the model's exact objective
+  double exact_seconds = 0;    // one exact evaluation with gradient, the faster of two
+  double noise_std = 0;        // the mapping's noise std (normalised channels)
+  double exact_mean_error_deg = 0;  // the same for the exact mean K_x. K^-1 Y
+  double exact_mean_seconds = 0;
+  std::vector<InducingGapPoint> points;  // one per requested M, in the order given
+};
+
+// For a GP model (not PCA) and each M in `ms` (3 <= M <= N): InputError otherwise, or when
+// an objective cannot be evaluated. Runs on the calling thread's linear-algebra threads.
+InducingGapReport MeasureInducingGap(const GaitModel& model, const std::vector<int>& ms);
+
+}  // namespace jgpm
