@@ -8,8 +8,11 @@
 #   3. Time to converge against N: local and sparse (M = 100) learning on half the default
 #      split (N = 900) and on the `walking` split (41 clean cycles, N = 3690).
 #   4. The paper suite (35 cases) for the sparse and local torus and cylinder models.
+#   5. `jgpm bench inducing`: how many inducing inputs each learned model's objective
+#      needs (the bound at its own parameters, greedy inducing inputs; for the local torus
+#      also optimised): OUT/inducing/NAME/inducing_gap.csv and .png.
 # Prints one table of wall time, iterations, exact final objective and training
-# reconstruction; takes about 40 min on 2 cores with MAX_SECONDS = 300.
+# reconstruction; takes about 60 min on 2 cores with MAX_SECONDS = 300.
 #
 #   datasets_scripts/bench_sparse.sh [OUT_DIR [MAX_SECONDS]]
 #
@@ -75,3 +78,12 @@ echo
 echo "paper suite (35 cases, mean mm): $out/paper/paper.csv"
 awk -F, 'NR > 1 { sum[$1] += $6; n[$1]++ } END { for (m in sum) printf "  %-20s %6.2f mm over %d cases\n", m, sum[m] / n[m], n[m] }' \
   "$out/paper/paper.csv" | sort
+
+echo
+for name in torus-local torus-full torus-sparse200 cyl-local walking-local; do
+  echo "== bench inducing: $name"
+  "$jgpm" bench inducing --model "$out/$name.json" --m 100,200,400,600,800,1000,1200,1800 --out "$out/inducing/$name"
+done
+echo "== bench inducing: torus-local, inducing inputs optimised"
+"$jgpm" bench inducing --model "$out/torus-local.json" --m 200,400,600,800 --optimise-iterations 300 \
+  --out "$out/inducing/torus-local-optimised"

@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
+#include "prior/full_trainer.h"
 
 namespace jgpm {
 
@@ -59,6 +60,26 @@ ScalingPoint TimeObjectiveEvaluation(int n, int m, int repeats) {
     if (r > 0) best = std::min(best, seconds);
   }
   point.seconds = best;
+  return point;
+}
+
+ConvergencePoint TimeToConverge(int n, int m, double max_seconds) {
+  SyntheticGpProblem problem = MakeSyntheticGpProblem(n, m);
+  ObjectiveTerms terms;
+  terms.channel_scales = terms.dynamics = true;
+  const GpObjective objective(problem.y, problem.sequences, nullptr, terms);
+  FullTrainingOptions options;
+  options.max_iterations = 1000000;  // the time budget or the stopping rule ends it
+  options.budget.max_seconds = max_seconds;
+  const TrainingSummary summary = TrainFull(objective, &problem.params, options);
+  ConvergencePoint point;
+  point.n = n;
+  point.m = m;
+  point.seconds = summary.wall_seconds;
+  point.iterations = summary.iterations;
+  point.termination = summary.termination;
+  point.initial_objective = summary.initial_objective;
+  point.final_objective = summary.final_objective;
   return point;
 }
 

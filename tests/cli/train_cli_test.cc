@@ -11,6 +11,7 @@
 
 #include "io/json_file.h"
 #include "io/text_reader.h"
+#include "prior/blas_threads.h"
 #include "prior/inducing_gap.h"
 #include "prior/learning_scaling.h"
 #include "prior/model_file.h"
@@ -97,7 +98,8 @@ TEST(TrainCli, BenchLearningTimesWhatTheLibraryEvaluates) {
   test::TempDir dir;
   const fs::path out = dir.path() / "scaling";
   test::CommandResult r =
-      test::RunJgpm("bench learning --n 60,90 --m 10 --exact-max 60 --repeats 1 --out " + out.string());
+      test::RunJgpm("bench learning --n 60,90 --m 10 --exact-max 60 --repeats 1 --converge-time 60 --out " +
+                    out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   // N = 60 exact and sparse, N = 90 sparse only; each row's objective is the library's.
   const std::string csv = ReadTextFile(out / "scaling.csv", "scaling");
@@ -119,6 +121,21 @@ TEST(TrainCli, BenchLearningTimesWhatTheLibraryEvaluates) {
     EXPECT_NEAR(objective, expected, 1e-5 * std::abs(expected) + 1e-6) << line;  // printed to 6 decimals
   }
   EXPECT_EQ(rows, (std::vector<std::pair<int, int>>{{60, 0}, {60, 10}, {90, 10}}));
+  // Learning to convergence for each of the same points, as the library learns.
+  std::istringstream converge(ReadTextFile(out / "convergence.csv", "convergence"));
+  std::getline(converge, line);
+  EXPECT_EQ(line, "n,m,seconds,iterations,termination,initial_objective,final_objective");
+  for (const auto& [n, m] : rows) {
+    ASSERT_TRUE(std::getline(converge, line));
+    const LinearAlgebraThreadScope threads(1);  // as the command's default
+    const ConvergencePoint c = TimeToConverge(n, m, 60);
+    char expected[64];
+    std::snprintf(expected, sizeof(expected), "%d,%d,", n, m);
+    EXPECT_EQ(line.rfind(expected, 0), 0u) << line;
+    // Same learning (deterministic): same iterations and ending; the time differs.
+    const std::string tail = "," + std::to_string(c.iterations) + "," + std::string(TerminationName(c.termination)) + ",";
+    EXPECT_NE(line.find(tail), std::string::npos) << line << " expected " << tail;
+  }
   EXPECT_FALSE(cv::imread((out / "scaling.png").string()).empty());
   // More inducing inputs than points: one line naming the option, nothing written.
   r = test::RunJgpm("bench learning --n 60 --m 61 --out " + (dir.path() / "bad").string());
@@ -141,18 +158,22 @@ TEST(TrainCli, BenchInducingReportsTheLibrarysBound) {
   std::istringstream lines(ReadTextFile(dir.path() / "gap" / "inducing_gap.csv", "gap"));
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "m,bound,exact,gap,relative_gap,mapping_gap,dynamics_gap,seconds_per_evaluation,"
-                  "exact_seconds_per_evaluation,mean_error_deg,exact_mean_error_deg,seconds_per_mean_pose,"
-                  "exact_seconds_per_mean_pose");
+  EXPECT_EQ(line, "m,bound,exact,gap,relative_gap,mapping_gap,dynamics_gap,optimised_gap,optimiser_iterations,"
+                  "seconds_per_evaluation,exact_seconds_per_evaluation,mean_error_deg,exact_mean_error_deg,"
+                  "seconds_per_mean_pose,exact_seconds_per_mean_pose");
   for (const InducingGapPoint& e : expected.points) {
     ASSERT_TRUE(std::getline(lines, line));
     int m = 0;
-    double bound = 0, exact = 0, gap = 0, relative = 0, mapping = 0, dynamics = 0, seconds = 0, exact_seconds = 0;
-    double error = 0, exact_error = 0;
-    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &m, &bound, &exact, &gap,
-                          &relative, &mapping, &dynamics, &seconds, &exact_seconds, &error, &exact_error),
-              11)
+    int iterations = 0;
+    double bound = 0, exact = 0, gap = 0, relative = 0, mapping = 0, dynamics = 0, optimised = 0, seconds = 0;
+    double exact_seconds = 0, error = 0, exact_error = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%d,%lf,%lf,%lf,%lf", &m, &bound, &exact, &gap,
+                          &relative, &mapping, &dynamics, &optimised, &iterations, &seconds, &exact_seconds, &error,
+                          &exact_error),
+              13)
         << line;
+    EXPECT_EQ(iterations, 0);
+    EXPECT_NEAR(optimised, gap, 1e-6 * std::abs(exact));
     EXPECT_EQ(m, e.m);
     EXPECT_NEAR(bound, e.bound, 1e-9 * std::abs(e.bound) + 1e-6) << line;
     EXPECT_NEAR(exact, expected.exact, 1e-9 * std::abs(expected.exact) + 1e-6);
@@ -161,6 +182,7 @@ TEST(TrainCli, BenchInducingReportsTheLibrarysBound) {
     EXPECT_NEAR(exact_error, expected.exact_mean_error_deg, 1e-5 * expected.exact_mean_error_deg) << line;
   }
   EXPECT_FALSE(std::getline(lines, line)) << line;
+  EXPECT_EQ(cv::imread((dir.path() / "gap" / "inducing_gap.png").string()).size(), cv::Size(760, 480));
   // Too few inducing inputs, or a model without a GP: one line, nothing written.
   r = test::RunJgpm("bench inducing --model " + model.string() + " --m 2 --out " + (dir.path() / "bad").string());
   EXPECT_EQ(r.status, 1);

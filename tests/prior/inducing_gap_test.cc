@@ -95,6 +95,21 @@ TEST(InducingGap, BoundTightensToTheExactObjectiveAsMGrows) {
   EXPECT_GT(r.points[0].mean_seconds, 0);
 }
 
+TEST(InducingGap, OptimisingTheInducingInputsTightensTheBoundAndKeepsItABound) {
+  const auto model = test::TrainOnSyntheticWalks(ModelKind::kMljgpmTorus);
+  const InducingGapReport greedy = MeasureInducingGap(*model, {10, 30});
+  const InducingGapReport r = MeasureInducingGap(*model, {10, 30}, 25);
+  for (size_t k = 0; k < r.points.size(); ++k) {
+    const InducingGapPoint& p = r.points[k];
+    EXPECT_EQ(p.bound, greedy.points[k].bound);  // it starts from the greedy inputs
+    EXPECT_EQ(greedy.points[k].optimised_bound, greedy.points[k].bound);
+    EXPECT_GT(p.optimiser_iterations, 0);
+    EXPECT_LE(p.optimiser_iterations, 25);
+    EXPECT_LT(p.optimised_gap(r.exact), 0.9 * p.gap()) << "M " << p.m;
+    EXPECT_GT(p.optimised_gap(r.exact), 0) << "M " << p.m;  // still above the exact objective
+  }
+}
+
 TEST(InducingGap, RefusesPcaAndBadCounts) {
   const auto pca = test::TrainOnSyntheticWalks(ModelKind::kPca);
   EXPECT_THROW(MeasureInducingGap(*pca, {10}), InputError);

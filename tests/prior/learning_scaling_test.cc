@@ -1,7 +1,8 @@
 // The scaling benchmark's pieces (prior/learning_scaling.h): its synthetic problem is a
 // valid GP problem whose sparse bound with M = N inducing inputs at the latent points equals
 // the exact objective (the bound's oracle), the timing reports the objective it evaluated,
-// and the chart draws the exact series in red, the first sparse one in blue.
+// learning to convergence starts from the problem's objective and ends by the trainer's rule
+// or its budget, and the chart draws the exact series in red, the first sparse one in blue.
 #include "prior/learning_scaling.h"
 
 #include <gtest/gtest.h>
@@ -41,6 +42,26 @@ TEST(LearningScaling, TimingReportsTheObjectiveItEvaluated) {
   EXPECT_GT(p.seconds, 0);
   const SyntheticGpProblem problem = MakeSyntheticGpProblem(60, 0);
   EXPECT_DOUBLE_EQ(p.objective, Evaluate(problem, problem.params).total);
+}
+
+TEST(LearningScaling, LearningToConvergenceStartsAtTheProblemAndStopsByItsRule) {
+  for (const int m : {0, 10}) {
+    const ConvergencePoint c = TimeToConverge(60, m, 120);
+    EXPECT_EQ(c.n, 60);
+    EXPECT_EQ(c.m, m);
+    EXPECT_EQ(c.termination, Termination::kConverged) << "M " << m;
+    EXPECT_GT(c.iterations, 50) << "M " << m;  // the plateau rule looks back 50 iterations
+    const SyntheticGpProblem problem = MakeSyntheticGpProblem(60, m);
+    ObjectiveTerms terms;
+    terms.channel_scales = terms.dynamics = true;
+    const double start = GpObjective(problem.y, problem.sequences, nullptr, terms).Evaluate(problem.params, nullptr).total;
+    EXPECT_DOUBLE_EQ(c.initial_objective, start);
+    EXPECT_LT(c.final_objective, c.initial_objective);
+  }
+  // A budget already spent stops it at the first iteration.
+  const ConvergencePoint stopped = TimeToConverge(60, 10, 1e-9);
+  EXPECT_EQ(stopped.termination, Termination::kStopped);
+  EXPECT_LE(stopped.iterations, 1);
 }
 
 TEST(LearningScaling, ChartDrawsTheExactSeriesInRedAndSparseInBlue) {

@@ -151,6 +151,7 @@ struct ScalingArguments {
   int exact_max = 3600;
   int repeats = 3;
   int threads = 1;
+  double converge_time = 0;  // > 0: also learn to convergence, at most this long per point
   std::string out;
 };
 
@@ -180,6 +181,22 @@ void RunScaling(const ScalingArguments& a) {
     }
   }
   OutputBatch batch;
+  if (a.converge_time > 0) {
+    std::string converge = "n,m,seconds,iterations,termination,initial_objective,final_objective\n";
+    for (const ScalingPoint& p : points) {
+      const ConvergencePoint c = TimeToConverge(p.n, p.m, a.converge_time);
+      const std::string how(TerminationName(c.termination));
+      std::printf("N %6d  %-12s learning: %s after %d iterations, %.1f s, objective %.1f -> %.1f\n", c.n,
+                  c.m ? ("M " + std::to_string(c.m)).c_str() : "exact", how.c_str(), c.iterations, c.seconds,
+                  c.initial_objective, c.final_objective);
+      std::fflush(stdout);
+      char row[200];
+      std::snprintf(row, sizeof(row), "%d,%d,%.3f,%d,%s,%.6f,%.6f\n", c.n, c.m, c.seconds, c.iterations, how.c_str(),
+                    c.initial_objective, c.final_objective);
+      converge += row;
+    }
+    batch.Add(out / "convergence.csv", converge);
+  }
   batch.Add(out / "scaling.csv", csv);
   batch.Add(out / "scaling.png", EncodePng(ScalingPlot(points), "scaling.png"));
   for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
@@ -188,6 +205,7 @@ void RunScaling(const ScalingArguments& a) {
 struct InducingGapArguments {
   std::string model;
   std::vector<int> m = {100, 200, 400, 600, 800, 1200};
+  int optimise_iterations = 0;
   int threads = 0;
   std::string out;
 };
@@ -203,29 +221,35 @@ void RunInducingGap(const InducingGapArguments& a) {
   std::sort(ms.begin(), ms.end());
   ms.erase(std::unique(ms.begin(), ms.end()), ms.end());
   const LinearAlgebraThreadScope threads(a.threads);
-  const InducingGapReport r = MeasureInducingGap(*model, ms);
+  const InducingGapReport r = MeasureInducingGap(*model, ms, a.optimise_iterations);
   std::printf("%s (%s learning), N %d: exact objective %.1f, %.3f s per evaluation with gradient; noise std %.3g\n"
               "exact mean poses: %.4f deg mean error at the training latents, %.2f us per pose\n",
               std::string(ModelKindName(model->kind())).c_str(), model->data().learning.c_str(), n, r.exact,
               r.exact_seconds, r.noise_std, r.exact_mean_error_deg, r.exact_mean_seconds * 1e6);
-  std::printf("%6s %14s %12s %9s %12s %12s %9s %8s %10s %8s\n", "M", "bound", "gap", "gap/|f|", "mapping", "dynamics",
-              "s/eval", "x exact", "mean (deg)", "us/pose");
-  std::string csv = "m,bound,exact,gap,relative_gap,mapping_gap,dynamics_gap,seconds_per_evaluation,"
-                    "exact_seconds_per_evaluation,mean_error_deg,exact_mean_error_deg,seconds_per_mean_pose,"
-                    "exact_seconds_per_mean_pose\n";
+  std::printf("%6s %14s %12s %9s %12s %12s %12s %9s %8s %10s %8s\n", "M", "bound", "gap", "gap/|f|", "mapping",
+              "dynamics", "optimised", "s/eval", "x exact", "mean (deg)", "us/pose");
+  std::string csv = "m,bound,exact,gap,relative_gap,mapping_gap,dynamics_gap,optimised_gap,optimiser_iterations,"
+                    "seconds_per_evaluation,exact_seconds_per_evaluation,mean_error_deg,exact_mean_error_deg,"
+                    "seconds_per_mean_pose,exact_seconds_per_mean_pose\n";
   for (const InducingGapPoint& p : r.points) {
-    std::printf("%6d %14.1f %12.1f %9.2e %12.1f %12.1f %9.3f %8.2f %10.4f %8.2f\n", p.m, p.bound, p.gap(),
-                p.gap() / std::abs(r.exact), p.mapping_gap, p.dynamics_gap, p.seconds, p.seconds / r.exact_seconds,
-                p.mean_error_deg, p.mean_seconds * 1e6);
+    std::printf("%6d %14.1f %12.1f %9.2e %12.1f %12.1f %12.1f %9.3f %8.2f %10.4f %8.2f\n", p.m, p.bound, p.gap(),
+                p.gap() / std::abs(r.exact), p.mapping_gap, p.dynamics_gap, p.optimised_gap(r.exact), p.seconds,
+                p.seconds / r.exact_seconds, p.mean_error_deg, p.mean_seconds * 1e6);
     char row[400];
-    std::snprintf(row, sizeof(row), "%d,%.6f,%.6f,%.6f,%.6e,%.6f,%.6f,%.6f,%.6f,%.6e,%.6e,%.6e,%.6e\n", p.m, p.bound,
-                  r.exact, p.gap(), p.gap() / std::abs(r.exact), p.mapping_gap, p.dynamics_gap, p.seconds,
-                  r.exact_seconds, p.mean_error_deg, r.exact_mean_error_deg, p.mean_seconds, r.exact_mean_seconds);
+    std::snprintf(row, sizeof(row), "%d,%.6f,%.6f,%.6f,%.6e,%.6f,%.6f,%.6f,%d,%.6f,%.6f,%.6e,%.6e,%.6e,%.6e\n", p.m,
+                  p.bound, r.exact, p.gap(), p.gap() / std::abs(r.exact), p.mapping_gap, p.dynamics_gap,
+                  p.optimised_gap(r.exact), p.optimiser_iterations, p.seconds, r.exact_seconds, p.mean_error_deg,
+                  r.exact_mean_error_deg, p.mean_seconds, r.exact_mean_seconds);
     csv += row;
   }
   std::filesystem::create_directories(a.out);  // after the measurement, which may refuse the model
   OutputBatch batch;
   batch.Add(std::filesystem::path(a.out) / "inducing_gap.csv", csv);
+  char title[200];
+  std::snprintf(title, sizeof(title), "%s, %s learning, N %d: exact objective %.0f, noise std %.3g",
+                std::string(ModelKindName(model->kind())).c_str(), model->data().learning.c_str(), n, r.exact,
+                r.noise_std);
+  batch.Add(std::filesystem::path(a.out) / "inducing_gap.png", EncodePng(InducingGapPlot(r, title), "inducing_gap.png"));
   for (const auto& file : batch.Commit()) std::printf("wrote %s\n", file.string().c_str());
 }
 
@@ -235,7 +259,8 @@ void RunInducingGap(const InducingGapArguments& a) {
 void AddBenchLearning(CLI::App* bench) {
   auto a = std::make_shared<ScalingArguments>();
   CLI::App* learning = bench->add_subcommand(
-      "learning", "Time one objective evaluation (exact and sparse) against N on synthetic data; scaling.csv, scaling.png");
+      "learning", "Time one objective evaluation (exact and sparse), and optionally learning to convergence, against N on "
+      "synthetic data; scaling.csv, scaling.png");
   learning->add_option("--n", a->n, "latent points N (repeat or comma-separate)")->delimiter(',')->capture_default_str();
   learning->add_option("--m", a->m, "inducing inputs M (repeat or comma-separate)")->delimiter(',')->capture_default_str();
   learning->add_option("--exact-max", a->exact_max, "time the exact O(N^3) objective up to this N")
@@ -245,21 +270,30 @@ void AddBenchLearning(CLI::App* bench) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   learning->add_option("--threads", a->threads, "linear-algebra threads")->check(CLI::Range(1, 256))->capture_default_str();
-  learning->add_option("--out", a->out, "folder for scaling.csv and scaling.png")->required();
+  learning->add_option("--converge-time", a->converge_time,
+                       "also learn each point to convergence (L-BFGS as `train`), at most this many seconds each; "
+                       "convergence.csv")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  learning->add_option("--out", a->out, "folder for scaling.csv, scaling.png (and convergence.csv)")->required();
   learning->callback([a] { RunScaling(*a); });
 
   auto g = std::make_shared<InducingGapArguments>();
   CLI::App* inducing = bench->add_subcommand(
       "inducing", "The sparse bound at a model's own parameters against its exact objective, as M grows; "
-                  "inducing_gap.csv");
+                  "inducing_gap.csv, inducing_gap.png");
   inducing->add_option("--model", g->model, "a GP model file (JSON)")->required();
   inducing->add_option("--m", g->m, "inducing inputs M per GP (repeat or comma-separate; capped at N)")
       ->delimiter(',')
       ->capture_default_str();
+  inducing->add_option("--optimise-iterations", g->optimise_iterations,
+                       "then optimise the inducing inputs alone (L-BFGS, at most this many iterations per M)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   inducing->add_option("--threads", g->threads, "linear-algebra threads; 0: OpenBLAS's default")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
-  inducing->add_option("--out", g->out, "folder for inducing_gap.csv")->required();
+  inducing->add_option("--out", g->out, "folder for inducing_gap.csv and inducing_gap.png")->required();
   inducing->callback([g] { RunInducingGap(*g); });
 }
 
