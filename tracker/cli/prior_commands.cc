@@ -214,10 +214,7 @@ void RunInducingGap(const InducingGapArguments& a) {
   const std::unique_ptr<GaitModel> model = ReadModelFile(a.model);
   const int n = model->data().set.NumPoints();
   std::vector<int> ms;  // the model's N caps the list, so one default fits every model
-  for (const int m : a.m) {
-    if (m < 3) ThrowInputError("--m " + std::to_string(m), "expected at least 3 inducing inputs");
-    ms.push_back(std::min(m, n));
-  }
+  for (const int m : a.m) ms.push_back(std::min(m, n));
   std::sort(ms.begin(), ms.end());
   ms.erase(std::unique(ms.begin(), ms.end()), ms.end());
   const LinearAlgebraThreadScope threads(a.threads);
@@ -285,6 +282,7 @@ void AddBenchLearning(CLI::App* bench) {
   inducing->add_option("--model", g->model, "a GP model file (JSON)")->required();
   inducing->add_option("--m", g->m, "inducing inputs M per GP (repeat or comma-separate; capped at N)")
       ->delimiter(',')
+      ->check(CLI::Range(3, 1000000))
       ->capture_default_str();
   inducing->add_option("--optimise-iterations", g->optimise_iterations,
                        "then optimise the inducing inputs alone (L-BFGS, at most this many iterations per M)")
