@@ -148,10 +148,14 @@ InducingGapReport MeasureInducingGap(const GaitModel& model, const std::vector<i
   const GaitModelData& data = model.data();
   const TrainingSet& set = data.set;
   const ModelSpec spec = SpecFor(data.kind, set.NumChannels());
-  if (!spec.gaussian_process) ThrowInputError("model", std::string(ModelKindName(data.kind)) + " has no GP to make sparse");
+  if (!spec.gaussian_process) {
+    ThrowInputError("model", std::string(ModelKindName(data.kind)) + " has no GP to make sparse");
+  }
   const int n = set.NumPoints();
   for (const int m : ms) {
-    if (m < 3 || m > n) ThrowInputError("inducing inputs " + std::to_string(m), "expected 3 <= M <= N (" + std::to_string(n) + ")");
+    if (m < 3 || m > n) {
+      ThrowInputError("inducing inputs " + std::to_string(m), "expected 3 <= M <= N (" + std::to_string(n) + ")");
+    }
   }
   Topology topology;
   if (data.terms.topology) topology = MakeTopology(set, data.topology_options);
@@ -199,7 +203,9 @@ InducingGapReport MeasureInducingGap(const GaitModel& model, const std::vector<i
     InducingGapPoint point;
     point.m = m;
     const ObjectiveValue bound = TimedEvaluation(objective, sparse, &point.seconds);
-    if (!bound.ok) ThrowInputError("inducing inputs " + std::to_string(m), "the bound cannot be evaluated: " + bound.why);
+    if (!bound.ok) {
+      ThrowInputError("inducing inputs " + std::to_string(m), "the bound cannot be evaluated: " + bound.why);
+    }
     point.bound = point.optimised_bound = bound.total;
     point.mapping_gap = bound.mapping - exact.mapping;
     point.dynamics_gap = bound.dynamics - exact.dynamics;
@@ -220,7 +226,8 @@ cv::Mat InducingGapPlot(const InducingGapReport& report, const std::string& titl
   JGPM_CHECK(!report.points.empty());
   const int width = 760, height = 480, left = 70, bottom = 50, top = 60, right = 30;
   cv::Mat image(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  auto relative = [&](double gap) { return std::max(gap / std::abs(report.exact), 1e-12); };
+  const double scale = std::max(std::abs(report.exact), 1e-300);
+  auto relative = [&](double gap) { return std::clamp(gap / scale, 1e-12, 1e300); };
   bool optimised = false;
   double m_hi = 0, lo = 1e300, hi = 0;
   for (const InducingGapPoint& p : report.points) {
@@ -242,15 +249,17 @@ cv::Mat InducingGapPlot(const InducingGapReport& report, const std::string& titl
     cv::line(image, a, b, e == -2 ? cv::Scalar(150, 150, 230) : cv::Scalar(228, 228, 228));
     text("1e" + std::to_string(static_cast<int>(e)), {18, a.y + 4});
   }
-  text("1% of the objective", to_pixel(0.02 * m_hi, 1e-2) + cv::Point(0, -5), {90, 90, 200}, 0.38);
+  if (ly0 <= -2 && -2 <= ly1) {
+    text("1% of the objective", to_pixel(0.02 * m_hi, 1e-2) + cv::Point(0, -5), {90, 90, 200}, 0.38);
+  }
   for (const InducingGapPoint& p : report.points) {
     const cv::Point at = to_pixel(p.m, std::pow(10, ly0));
     cv::line(image, {at.x, top}, at, cv::Scalar(228, 228, 228));
     text(std::to_string(p.m), {at.x - 14, at.y + 18});
   }
   text("inducing inputs M per GP", {width / 2 - 120, height - 12});
-  text("(bound - exact) / |exact| at the model's parameters, log; labels: cost of an evaluation / exact", {left - 50, 22},
-       {0, 0, 0}, 0.45);
+  text("(bound - exact) / |exact| at the model's parameters, log; labels: cost of an evaluation / exact",
+       {left - 50, 22}, {0, 0, 0}, 0.45);
   text(title, {left - 50, 44}, {0, 0, 0}, 0.45);
   auto series = [&](auto gap, cv::Scalar colour, bool labels) {
     for (size_t k = 0; k < report.points.size(); ++k) {

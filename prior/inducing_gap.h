@@ -4,8 +4,8 @@
 //
 // The inducing inputs are chosen greedily, by pivoted Cholesky of each GP's noise-free
 // kernel over its inputs (LAPACK dpstrf): each next one is the input the previous ones
-// explain worst, the usual near-optimal subset (Fine & Scheinberg 2001; Burt, Rasmussen &
-// van der Wilk 2019 bound the gap this leaves). Optionally they are then optimised, with
+// explain worst (Fine & Scheinberg 2001; the "greedy variance" start that Burt, Rasmussen
+// & van der Wilk 2020 recommend for this bound's inducing inputs). Optionally they are then optimised, with
 // the latent points and hyper-parameters held, by L-BFGS on the bound (as sparse learning
 // moves them). The gap says whether sparse learning could reach this model's objective
 // with M inputs at all: the bound's trace term c/(2 sigma^2) tr(K - Q) grows as the noise
@@ -33,8 +33,9 @@ struct InducingGapPoint {
   double bound = 0;            // the sparse objective (an upper bound on the exact one)
   double optimised_bound = 0;  // after optimising the inducing inputs (= bound without)
   int optimiser_iterations = 0;
-  double mapping_gap = 0;      // bound minus exact, mapping term
-  double dynamics_gap = 0;     // bound minus exact, dynamics term (0 without dynamics)
+  // Bound minus exact, per term (the other terms do not depend on the inducing inputs).
+  double mapping_gap = 0;
+  double dynamics_gap = 0;     // 0 without dynamics
   double seconds = 0;          // one evaluation with gradient, the faster of two
   // Predictions through the greedy inducing inputs (the mapping's posterior mean
   // K_xu (sigma^2 K_uu + K_un K_nu)^-1 K_un Y): their mean absolute error against the

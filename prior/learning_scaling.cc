@@ -71,16 +71,8 @@ ConvergencePoint TimeToConverge(int n, int m, double max_seconds) {
   FullTrainingOptions options;
   options.max_iterations = 1000000;  // the time budget or the stopping rule ends it
   options.budget.max_seconds = max_seconds;
-  const TrainingSummary summary = TrainFull(objective, &problem.params, options);
-  ConvergencePoint point;
-  point.n = n;
-  point.m = m;
-  point.seconds = summary.wall_seconds;
-  point.iterations = summary.iterations;
-  point.termination = summary.termination;
-  point.initial_objective = summary.initial_objective;
-  point.final_objective = summary.final_objective;
-  return point;
+  const TrainingSummary s = TrainFull(objective, &problem.params, options);
+  return {n, m, s.wall_seconds, s.iterations, s.termination, s.initial_objective, s.final_objective};
 }
 
 cv::Mat ScalingPlot(const std::vector<ScalingPoint>& points) {
