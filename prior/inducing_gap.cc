@@ -16,6 +16,7 @@
 #include "prior/cholesky.h"
 #include "prior/kernel.h"
 #include "prior/model_kind.h"
+#include "prior/sparse_gp.h"
 #include "prior/topology.h"
 #include "prior/train.h"
 
@@ -102,23 +103,6 @@ double OptimisedBound(const GpObjective& objective, const GpParameters& sparse, 
   ceres::Solve(options, problem, q.data(), &summary);
   *used = static_cast<int>(summary.iterations.size()) - 1;  // the first is the start
   return summary.final_cost;
-}
-
-// Weights V of the inducing-point mean K_*u V, in the bound's stable form
-// (prior/sparse_gp.cc): with L L^T = K_uu + jitter, A = L^-1 K_un / sigma and
-// B = I + A A^T, V = (sigma^2 K_uu + K_un K_nu)^-1 K_un Y = L^-T B^-1 A Y / sigma.
-Eigen::MatrixXd InducingMeanWeights(const Kernel& kernel, const Eigen::MatrixXd& u, const Eigen::MatrixXd& k_un,
-                                    const Eigen::MatrixXd& y, double jitter, double sigma) {
-  Eigen::MatrixXd k_uu = kernel.CrossMatrix(u, u, kernel.RbfCross(u, u));
-  k_uu.diagonal().array() += jitter;
-  Cholesky chol_uu, chol_b;
-  const std::string what = "inducing inputs " + std::to_string(u.rows());
-  if (!chol_uu.Compute(k_uu)) ThrowInputError(what, chol_uu.why());
-  const Eigen::MatrixXd a = chol_uu.HalfSolve(k_un) / sigma;
-  Eigen::MatrixXd b = a * a.transpose();
-  b.diagonal().array() += 1.0;
-  if (!chol_b.Compute(b)) ThrowInputError(what, chol_b.why());
-  return chol_uu.HalfSolveTransposed(chol_b.Solve(a * y)) / sigma;
 }
 
 Eigen::MatrixXd Rows(const Eigen::MatrixXd& x, const std::vector<int>& rows, int count) {
@@ -212,10 +196,13 @@ InducingGapReport MeasureInducingGap(const GaitModel& model, const std::vector<i
     if (optimise_iterations > 0) {
       point.optimised_bound = OptimisedBound(objective, sparse, optimise_iterations, &point.optimiser_iterations);
     }
-    const Eigen::MatrixXd k_un = mapping.CrossMatrix(sparse.u, p.x, mapping.RbfCross(sparse.u, p.x));
-    const Eigen::MatrixXd weights =
-        InducingMeanWeights(mapping, sparse.u, k_un, set.y, data.terms.inducing_jitter, report.noise_std);
-    point.mean_error_deg = MeanErrorDeg(set, k_un.transpose() * weights);
+    Eigen::MatrixXd weights;
+    std::string why;
+    if (!SparseGpMeanWeights(mapping, p.x, sparse.u, set.y, data.terms.inducing_jitter, &weights, &why)) {
+      ThrowInputError("inducing inputs " + std::to_string(m), why);
+    }
+    const Eigen::MatrixXd k_nu = mapping.CrossMatrix(p.x, sparse.u, mapping.RbfCross(p.x, sparse.u));
+    point.mean_error_deg = MeanErrorDeg(set, k_nu * weights);
     point.mean_seconds = MeanPoseSeconds(mapping, sparse.u, weights, p.x);
     report.points.push_back(point);
   }

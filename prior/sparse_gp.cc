@@ -8,37 +8,66 @@
 
 namespace jgpm {
 
+namespace {
+
 // With L L^T = K_uu + jitter, A = L^-1 K_un / sigma (M x N) and B = I + A A^T, as GPflow's
 // SGPR: sigma^2 I + Q = sigma^2 (I + A^T A), so ln|sigma^2 I + Q| = N ln sigma^2 + ln|B|,
 // (sigma^2 I + Q)^-1 Z = (Z - A^T B^-1 A Z) / sigma^2 and tr Q = sigma^2 |A|^2. Every
 // solve is against L or B, never K_uu itself: a smooth kernel makes K_uu nearly singular,
 // and K_uu^-1 S computed directly then lost the trace term's accuracy (seen: a bound of
 // -2e8 above an exact objective of +1.6e3 on the dynamics GP, whose noise is 1e-4).
+struct Factors {
+  Eigen::MatrixXd rbf_un, rbf_uu, k_un, a, aat;
+  Cholesky chol_uu, chol_b;
+};
+
+bool Factorise(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& u, double inducing_jitter,
+               const char* name, Factors* f, std::string* why) {
+  JGPM_CHECK(x.cols() == 3 && u.cols() == 3 && u.rows() >= 1);
+  f->rbf_un = kernel.RbfCross(u, x);
+  f->rbf_uu = kernel.RbfCross(u, u);
+  f->k_un = kernel.CrossMatrix(u, x, f->rbf_un);
+  Eigen::MatrixXd k_uu = kernel.CrossMatrix(u, u, f->rbf_uu);
+  k_uu.diagonal().array() += inducing_jitter;
+  if (!f->chol_uu.Compute(k_uu)) {
+    *why = std::string(name) + " (inducing inputs): " + f->chol_uu.why();
+    return false;
+  }
+  f->a = f->chol_uu.HalfSolve(f->k_un) / std::sqrt(kernel.noise_variance());
+  f->aat = f->a * f->a.transpose();
+  Eigen::MatrixXd b = f->aat;
+  b.diagonal().array() += 1.0;
+  if (!f->chol_b.Compute(b)) {
+    *why = std::string(name) + " (inducing inputs): " + f->chol_b.why();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool SparseGpMeanWeights(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& u,
+                         const Eigen::MatrixXd& z, double inducing_jitter, Eigen::MatrixXd* weights, std::string* why) {
+  JGPM_CHECK(x.rows() == z.rows());
+  Factors f;
+  if (!Factorise(kernel, x, u, inducing_jitter, "mean", &f, why)) return false;
+  // (sigma^2 K_uu + K_un K_nu)^-1 K_un Z = (sigma^2 L B L^T)^-1 L A Z sigma = L^-T B^-1 A Z / sigma.
+  *weights = f.chol_uu.HalfSolveTransposed(f.chol_b.Solve(f.a * z)) / std::sqrt(kernel.noise_variance());
+  return true;
+}
+
 bool SparseGpTerm(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& u,
                   const Eigen::MatrixXd& z, double weight, double inducing_jitter, const char* name, double* value,
                   Eigen::MatrixXd* v, Eigen::MatrixXd* dx, Eigen::MatrixXd* du, Eigen::VectorXd* dlog_params,
                   double* jitter, std::string* why) {
-  JGPM_CHECK(x.rows() == z.rows() && x.cols() == 3 && u.cols() == 3 && u.rows() >= 1);
+  JGPM_CHECK(x.rows() == z.rows());
   const int n = static_cast<int>(x.rows()), m = static_cast<int>(u.rows());
   const double c = z.cols();
   const double noise = kernel.noise_variance(), sigma = std::sqrt(noise);
-  const Eigen::MatrixXd rbf_un = kernel.RbfCross(u, x), rbf_uu = kernel.RbfCross(u, u);
-  const Eigen::MatrixXd k_un = kernel.CrossMatrix(u, x, rbf_un);
-  Eigen::MatrixXd k_uu = kernel.CrossMatrix(u, u, rbf_uu);
-  k_uu.diagonal().array() += inducing_jitter;
-  Cholesky chol_uu, chol_b;
-  if (!chol_uu.Compute(k_uu)) {
-    *why = std::string(name) + " (inducing inputs): " + chol_uu.why();
-    return false;
-  }
-  const Eigen::MatrixXd a = chol_uu.HalfSolve(k_un) / sigma;
-  const Eigen::MatrixXd aat = a * a.transpose();
-  Eigen::MatrixXd b = aat;
-  b.diagonal().array() += 1.0;
-  if (!chol_b.Compute(b)) {
-    *why = std::string(name) + " (inducing inputs): " + chol_b.why();
-    return false;
-  }
+  Factors f;
+  if (!Factorise(kernel, x, u, inducing_jitter, name, &f, why)) return false;
+  const Eigen::MatrixXd &rbf_un = f.rbf_un, &rbf_uu = f.rbf_uu, &a = f.a, &aat = f.aat;
+  const Cholesky &chol_uu = f.chol_uu, &chol_b = f.chol_b;
   *jitter = std::max({*jitter, chol_uu.jitter(), chol_b.jitter()});
   const Eigen::MatrixXd az = a * z;               // M x c
   const Eigen::MatrixXd b_az = chol_b.Solve(az);  // B^-1 A Z

@@ -36,4 +36,10 @@ bool SparseGpTerm(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::M
                   Eigen::MatrixXd* v, Eigen::MatrixXd* dx, Eigen::MatrixXd* du, Eigen::VectorXd* dlog_params,
                   double* jitter, std::string* why);
 
+// Weights V of the bound's predictive mean K_*u V of z at new inputs: V = (sigma^2 K_uu +
+// K_un K_nu)^-1 K_un Z (M x c), computed through the same factors as the bound. False, with
+// `why`, when a matrix cannot be factorised.
+bool SparseGpMeanWeights(const Kernel& kernel, const Eigen::MatrixXd& x, const Eigen::MatrixXd& u,
+                         const Eigen::MatrixXd& z, double inducing_jitter, Eigen::MatrixXd* weights, std::string* why);
+
 }  // namespace jgpm
