@@ -10,8 +10,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/core/eigen.hpp>
 
-#include "io/error.h"
-#include "io/text_reader.h"
+#include "io/base/error.h"
+#include "io/base/text_reader.h"
 
 namespace jgpm {
 namespace {

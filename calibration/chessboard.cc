@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/error.h"
-#include "io/text_reader.h"
+#include "io/base/error.h"
+#include "io/base/text_reader.h"
 
 namespace jgpm {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "io/error.h"
+#include "io/base/error.h"
 
 namespace jgpm {
 

@@ -13,7 +13,7 @@ datasets_scripts/build.sh --target jgpm
 
 # Motion data: --data / $JGPM_DATA / ./data/cmu / ../shared/data/cmu; fetch it when online
 # and none is there.
-# (A root holds data when a subject folder has its .asf, as jgpm decides: io/data_root.h.)
+# (A root holds data when a subject folder has its .asf, as jgpm decides: io/gait/data_root.h.)
 holds_data() { compgen -G "$1/subjects/*/*.asf" >/dev/null; }
 if [ -z "${JGPM_DATA:-}" ] && ! holds_data data/cmu && ! holds_data ../shared/data/cmu; then
   datasets_scripts/fetch_cmu.sh

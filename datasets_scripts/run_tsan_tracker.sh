@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# ThreadSanitizer on the threaded particle filter: builds tests/tracker/tracker_test.cc
-# (tracker/tracker_test: a short clip tracked end to end with 1 and 2 threads; the filter's
+# ThreadSanitizer on the threaded particle filter: builds tests/tracker/filter/tracker_test.cc
+# (tracker/filter/tracker_test: a short clip tracked end to end with 1 and 2 threads; the filter's
 # ThreadPool, per-worker scratch, thread_local kinematics buffers and the pose table's
 # build threads) with -fsanitize=thread in ./build-tsan, or the folder given, runs it, and
 # fails on a failing test or any data-race report (halt_on_error).
@@ -14,7 +14,7 @@
 # it; a lock-order inversion between its own CPL mutexes while the clip's PNGs are written,
 # on the main thread alone) is suppressed.
 # -O1 as asked of sanitizer builds (CMAKE_CXX_FLAGS_RELEASE reduced to -DNDEBUG so
-# Release's -O3 does not override it). target_clones (prior/rbf_row.cc, tracker/likelihood.cc)
+# Release's -O3 does not override it). target_clones (prior/numerics/rbf_row.cc, tracker/filter/likelihood.cc)
 # is compiled as a plain function here: its ifunc resolver runs while the program is being
 # relocated, before TSan's runtime is up, and an instrumented resolver crashes the program
 # before main (gcc and clang alike).
@@ -30,7 +30,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_REL
   -DCMAKE_CXX_FLAGS="-fsanitize=thread -g -O1 '-Dtarget_clones(...)=noinline'" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
   -DJGPM_BUILD_TESTS=ON -DJGPM_BENCHMARKS=OFF -DJGPM_FUZZ=OFF >/dev/null
-cmake --build "$build" --target tracker_tracker_test
+cmake --build "$build" --target tracker_filter_tracker_test
 
 log="$(mktemp)" suppressions="$(mktemp)"
 trap 'rm -f "$log" "$suppressions"' EXIT

@@ -72,7 +72,7 @@ inline const char* SmallAsfText() {
 )";
 }
 
-// A made-up skeleton with every bone of the 18 gait joints (io/gait_pose.h) and the CMU
+// A made-up skeleton with every bone of the 18 gait joints (io/gait/gait_pose.h) and the CMU
 // bones' names and dofs, but its own simple geometry (not CMU data): for model files in
 // fuzz seeds and tests that need a gait skeleton without reading the data root.
 inline std::string GaitAsfText() {

@@ -1,6 +1,6 @@
 #include "test_support.h"
 
-#include "io/data_root.h"
+#include "io/gait/data_root.h"
 
 #include <algorithm>
 #include <atomic>

@@ -2,15 +2,16 @@
 // synthetic skeletons written by the tests themselves.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "io/error.h"
-#include "io/skeleton.h"
-#include "io/split.h"
+#include "io/base/error.h"
+#include "io/gait/split.h"
+#include "io/mocap/skeleton.h"
 #include "small_asf.h"
 
 namespace jgpm::test {
@@ -59,6 +60,9 @@ void ExpectInputError(F f, std::initializer_list<std::string> parts) {
     }
   }
 }
+
+// Lines in `text` (its newlines): a one-line error is "...\n".
+inline int CountLines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 // 1-based number of the first line of `text` containing `needle`, or 0.
 int LineOf(const std::string& text, const std::string& needle);

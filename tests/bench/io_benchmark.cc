@@ -2,10 +2,10 @@
 // particle) and AMC parsing throughput.
 #include <benchmark/benchmark.h>
 
-#include "io/amc.h"
-#include "io/asf.h"
-#include "io/kinematics.h"
-#include "io/text_reader.h"
+#include "io/base/text_reader.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/kinematics.h"
 #include "test_support.h"
 
 namespace jgpm {

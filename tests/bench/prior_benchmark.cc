@@ -8,17 +8,17 @@
 #include <cmath>
 #include <random>
 
-#include "io/data_root.h"
-#include "io/gait_dataset.h"
-#include "io/heap.h"
-#include "io/text_reader.h"
-#include "prior/blas_threads.h"
-#include "prior/rbf_row.h"
-#include "prior/inference.h"
-#include "prior/model_file.h"
-#include "prior/learning_scaling.h"
-#include "prior/objective.h"
-#include "prior/train.h"
+#include "io/base/heap.h"
+#include "io/base/text_reader.h"
+#include "io/gait/data_root.h"
+#include "io/gait/gait_dataset.h"
+#include "prior/eval/learning_scaling.h"
+#include "prior/learning/objective.h"
+#include "prior/model/inference.h"
+#include "prior/model/model_file.h"
+#include "prior/model/train.h"
+#include "prior/numerics/blas_threads.h"
+#include "prior/numerics/rbf_row.h"
 #include "test_support.h"
 
 namespace jgpm {

@@ -36,28 +36,28 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/amc.h"
-#include "io/asf.h"
-#include "io/gait_dataset.h"
-#include "io/kinematics.h"
-#include "io/text_reader.h"
-#include "prior/blas_threads.h"
-#include "prior/model_file.h"
-#include "prior/train.h"
+#include "io/base/text_reader.h"
+#include "io/gait/gait_dataset.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/kinematics.h"
+#include "prior/model/model_file.h"
+#include "prior/model/train.h"
+#include "prior/numerics/blas_threads.h"
 #include "test_support.h"
-#include "tracker/annealed_filter.h"
-#include "tracker/bit_silhouette.h"
-#include "tracker/clip_format.h"
-#include "tracker/clip_source.h"
-#include "tracker/foreground.h"
-#include "tracker/likelihood.h"
-#include "tracker/manifold_state.h"
-#include "tracker/pose_table.h"
-#include "tracker/ray_caster.h"
-#include "tracker/silhouette.h"
-#include "tracker/synthetic_clip.h"
-#include "tracker/track_job.h"
-#include "tracker/tracker.h"
+#include "tracker/body/bit_silhouette.h"
+#include "tracker/body/ray_caster.h"
+#include "tracker/body/silhouette.h"
+#include "tracker/clip/clip_format.h"
+#include "tracker/clip/synthetic_clip.h"
+#include "tracker/filter/annealed_filter.h"
+#include "tracker/filter/likelihood.h"
+#include "tracker/filter/tracker.h"
+#include "tracker/frames/clip_source.h"
+#include "tracker/frames/foreground.h"
+#include "tracker/run/track_job.h"
+#include "tracker/state/manifold_state.h"
+#include "tracker/state/pose_table.h"
 
 namespace jgpm {
 namespace {
@@ -459,7 +459,7 @@ void BM_LikelihoodObserve(benchmark::State& state) {
 }
 BENCHMARK(BM_LikelihoodObserve)->Unit(benchmark::kMicrosecond);
 
-// A colour frame to a mask by background subtraction (tracker/foreground.h), as for a
+// A colour frame to a mask by background subtraction (tracker/frames/foreground.h), as for a
 // recording: gain compensation, MOG2 (0) or KNN (1), clean-up, specks. OpenCV on one
 // thread, as above.
 void BM_Foreground(benchmark::State& state) {

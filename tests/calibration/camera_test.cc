@@ -12,7 +12,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 
-#include "io/error.h"
+#include "io/base/error.h"
 #include "test_support.h"
 
 namespace jgpm {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -11,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calibration/synthetic_chessboard.h"
-#include "io/error.h"
 #include "calibration/true_camera.h"
+#include "io/base/error.h"
 #include "test_support.h"
 
 namespace jgpm {
@@ -20,9 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
-double Rad(double deg) { return deg * kPi / 180; }
-double Deg(double rad) { return rad * 180 / kPi; }
+double Rad(double deg) { return deg * std::numbers::pi / 180; }
+double Deg(double rad) { return rad * 180 / std::numbers::pi; }
 
 using test::TrueCamera;
 

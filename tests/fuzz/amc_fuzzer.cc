@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "io/amc.h"
-#include "io/asf.h"
-#include "io/error.h"
+#include "io/base/error.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
 #include "small_asf.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -3,9 +3,9 @@
 #include <cstdint>
 #include <string>
 
-#include "io/asf.h"
-#include "io/error.h"
-#include "io/kinematics.h"
+#include "io/base/error.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/kinematics.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "io/bvh.h"
-#include "io/error.h"
+#include "io/base/error.h"
+#include "io/mocap/bvh.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

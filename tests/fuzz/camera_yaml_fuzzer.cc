@@ -6,7 +6,7 @@
 #include <string>
 
 #include "calibration/camera.h"
-#include "io/error.h"
+#include "io/base/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "io/error.h"
-#include "io/gait_dataset.h"
+#include "io/base/error.h"
+#include "io/gait/gait_dataset.h"
 
 namespace {
 

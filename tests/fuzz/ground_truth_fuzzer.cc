@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "io/error.h"
-#include "tracker/clip_format.h"
+#include "io/base/error.h"
+#include "tracker/clip/clip_format.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

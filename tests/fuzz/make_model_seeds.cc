@@ -4,11 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 
-#include "io/gait_pose.h"
-#include "io/asf.h"
-#include "prior/model_file.h"
-#include "prior/train.h"
+#include "io/gait/gait_pose.h"
+#include "io/mocap/asf.h"
+#include "prior/model/model_file.h"
+#include "prior/model/train.h"
 #include "small_asf.h"
 
 int main(int argc, char** argv) {
@@ -31,7 +32,7 @@ int main(int argc, char** argv) {
     trial.cycle.poses.resize(6, layout.NumChannels());
     for (int p = 0; p < 6; ++p)
       for (int c = 0; c < layout.NumChannels(); ++c)
-        trial.cycle.poses(p, c) = (10 + 3 * g) * std::sin(6.283185307179586 * p / 6 + 0.4 * c) + c;
+        trial.cycle.poses(p, c) = (10 + 3 * g) * std::sin(2 * std::numbers::pi * p / 6 + 0.4 * c) + c;
     dataset.trials.push_back(trial);
   }
   for (ModelKind kind : AllModelKinds()) {

@@ -8,8 +8,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "io/error.h"
-#include "tracker/mask_png.h"
+#include "io/base/error.h"
+#include "tracker/clip/mask_png.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::vector<uint8_t> bytes(data, data + size);

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/error.h"
-#include "prior/model_file.h"
+#include "io/base/error.h"
+#include "prior/model/model_file.h"
 
 namespace {
 

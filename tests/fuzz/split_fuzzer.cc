@@ -7,8 +7,8 @@
 #include <string>
 #include <string_view>
 
-#include "io/error.h"
-#include "io/split.h"
+#include "io/base/error.h"
+#include "io/gait/split.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "io/error.h"
-#include "tracker/tracking_suite.h"
+#include "io/base/error.h"
+#include "tracker/clip/tracking_suite.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

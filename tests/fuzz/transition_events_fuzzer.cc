@@ -6,9 +6,9 @@
 #include <string>
 #include <string_view>
 
-#include "io/error.h"
-#include "io/split.h"
-#include "io/transition_event.h"
+#include "io/base/error.h"
+#include "io/gait/split.h"
+#include "prior/motion/transition_event.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       jgpm::TrialId id;
       JGPM_CHECK(jgpm::ParseTrialId(e.trial, &id));
       JGPM_CHECK(!e.frame_number || *e.frame_number >= 1);
-      written += e.trial + " " + jgpm::TransitionKindName(e.kind);
+      written += e.trial + " " + std::string(jgpm::TransitionKindName(e.kind));
       if (e.frame_number) written += " @" + std::to_string(*e.frame_number);
       if (e.tune) written += " tune";
       written += "\n";

@@ -15,8 +15,8 @@
 #include <memory>
 #include <vector>
 
-#include "io/error.h"
-#include "io/v4l2_camera.h"
+#include "io/base/error.h"
+#include "io/video/v4l2_camera.h"
 
 namespace {
 

@@ -3,12 +3,13 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
-#include "io/asf.h"
-#include "io/gait_dataset.h"
-#include "io/text_reader.h"
-#include "prior/train.h"
+#include "io/base/text_reader.h"
+#include "io/gait/gait_dataset.h"
+#include "io/mocap/asf.h"
+#include "prior/model/train.h"
 #include "test_support.h"
 
 namespace jgpm::test {
@@ -34,7 +35,7 @@ inline GaitDataset SyntheticGaitDataset(int gaits, int poses, int channels) {
     trial.cycle.clean = true;
     trial.cycle.poses.resize(poses, channels);
     for (int p = 0; p < poses; ++p) {
-      const double phase = 6.283185307179586 * p / poses;
+      const double phase = 2 * std::numbers::pi * p / poses;
       for (int c = 0; c < channels; ++c) {
         trial.cycle.poses(p, c) = SyntheticWalkAngle(g, phase, c);
       }

@@ -1,19 +1,21 @@
-// The `jgpm` command: each subcommand parses its options and calls the library.
+// The `jgpm` command: a table of each layer's command groups (io/cli, calibration/cli,
+// prior/cli, tracker/cli); each subcommand parses its options and calls the library. The
+// only file that sees every group.
 #include <cstdio>
 #include <exception>
 
 #include <CLI/CLI.hpp>
 
-#include "io/error.h"
-#include "io/heap.h"
-#include "tracker/cli/calibration_commands.h"
-#include "tracker/cli/data_commands.h"
-#include "tracker/cli/device_commands.h"
-#include "tracker/cli/prior_commands.h"
+#include "calibration/cli/calibration_commands.h"
+#include "io/base/error.h"
+#include "io/base/heap.h"
+#include "io/cli/data_commands.h"
+#include "io/cli/device_commands.h"
+#include "prior/cli/prior_commands.h"
+#include "prior/cli/transition_commands.h"
+#include "prior/cli/validation_commands.h"
 #include "tracker/cli/render_commands.h"
 #include "tracker/cli/track_commands.h"
-#include "tracker/cli/transition_commands.h"
-#include "tracker/cli/validation_commands.h"
 
 int main(int argc, char** argv) {
   jgpm::KeepFreedMemory();  // learning's temporaries are reused, not page-faulted in again
@@ -25,6 +27,10 @@ int main(int argc, char** argv) {
   jgpm::cli::AddValidationCommands(app);
   jgpm::cli::AddRenderCommands(app);
   jgpm::cli::AddTrackCommands(app);
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
+  bench->require_subcommand(1);
+  jgpm::cli::AddTrackBench(bench);
+  jgpm::cli::AddPriorBenches(bench);
   jgpm::cli::AddTransitionCommands(app);
   jgpm::cli::AddCalibrationCommands(app);
   jgpm::cli::AddDeviceCommands(app);

@@ -1,14 +1,15 @@
 #include "tracker/cli/render_commands.h"
 
 #include <cstdio>
+#include <numbers>
 
 #include "calibration/camera.h"
-#include "io/amc.h"
-#include "io/asf.h"
-#include "io/error.h"
-#include "io/motion_file.h"
-#include "tracker/cli/progress.h"
-#include "tracker/synthetic_clip.h"
+#include "io/base/error.h"
+#include "io/cli/progress.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/motion_file.h"
+#include "tracker/clip/synthetic_clip.h"
 
 namespace jgpm::cli {
 namespace {
@@ -47,7 +48,7 @@ void RunRender(const RenderArguments& a) {
   for (const Camera& c : summary.cameras) {
     const Eigen::Vector3d at = c.CentreInWorld();
     std::printf("  %s: f %.1f px (%.0f deg across), at (%.0f, %.0f, %.0f) mm\n", c.name.c_str(), c.fx,
-                2 * std::atan(c.width / (2 * c.fx)) * 180 / M_PI, at.x(), at.y(), at.z());
+                2 * std::atan(c.width / (2 * c.fx)) * 180 / std::numbers::pi, at.x(), at.y(), at.z());
   }
 }
 

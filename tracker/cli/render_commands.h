@@ -1,4 +1,4 @@
-// `jgpm render`: synthetic silhouette clips from motion capture (tracker/synthetic_clip.h).
+// `jgpm render`: synthetic silhouette clips from motion capture (tracker/clip/synthetic_clip.h).
 #pragma once
 
 #include <CLI/CLI.hpp>

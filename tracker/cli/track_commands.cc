@@ -10,16 +10,15 @@
 
 #include <opencv2/highgui.hpp>
 
-#include "io/data_root.h"
-#include "io/error.h"
-#include "io/output_batch.h"
-#include "prior/png_file.h"
-#include "tracker/cli/device_commands.h"
-#include "tracker/cli/prior_commands.h"
-#include "tracker/cli/progress.h"
-#include "tracker/track_bench.h"
-#include "tracker/track_job.h"
-#include "tracker/tracking_suite.h"
+#include "io/base/error.h"
+#include "io/base/output_batch.h"
+#include "io/base/png_file.h"
+#include "io/cli/device_commands.h"
+#include "io/cli/progress.h"
+#include "io/gait/data_root.h"
+#include "tracker/clip/tracking_suite.h"
+#include "tracker/run/track_bench.h"
+#include "tracker/run/track_job.h"
 
 namespace jgpm::cli {
 namespace {
@@ -224,6 +223,11 @@ void RunBench(BenchArguments a) {
 
 }  // namespace
 
+// Shared by `track` and `bench track`.
+constexpr const char* kAdaptHelp =
+    "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
+    "a state under the training subjects' posture prior (measured no better on the suite)";
+
 void AddTrackCommands(CLI::App& app) {
   auto a = std::make_shared<TrackArguments>();
   CLI::App* track = app.add_subcommand("track", "Track a walking person's 3-D pose in a clip with a gait prior");
@@ -297,10 +301,7 @@ void AddTrackCommands(CLI::App& app) {
       ->check(CLI::IsMember({"model", "joint-space"}))
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
-  const char* adapt_help =
-      "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
-      "a state under the training subjects' posture prior (measured no better on the suite)";
-  track->add_option("--adapt", a->adapt, adapt_help)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
+  track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
       ->check(CLI::NonNegativeNumber)
@@ -309,9 +310,10 @@ void AddTrackCommands(CLI::App& app) {
   track->add_flag("--no-overlay", a->no_overlay, "skip the overlay videos");
   track->callback([a] { RunTrack(*a); });
 
+}
+
+void AddTrackBench(CLI::App* bench) {
   auto b = std::make_shared<BenchArguments>();
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
-  bench->require_subcommand(1);
   CLI::App* track_bench = bench->add_subcommand(
       "track", "Track every clip of the tracking suite with every model and the baselines; track.csv and plots");
   track_bench->add_option("--suite", b->suite, "the suite (NAME TRIAL [render options] per line)")->capture_default_str();
@@ -330,7 +332,7 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track_bench->add_option("--max-frames", b->bench.max_frames, "frames per clip (0: all)")->check(CLI::NonNegativeNumber);
   track_bench->add_option("--threads", b->threads, "threads (0: all cores)")->check(CLI::Range(0, 256));
-  track_bench->add_option("--adapt", b->adapt, adapt_help)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
+  track_bench->add_option("--adapt", b->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track_bench->add_option("--budget-clip", b->budget_clip, "the clip of the accuracy-versus-budget curve")
       ->capture_default_str();
   track_bench->add_option("--baseline", b->baselines,
@@ -344,7 +346,6 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->callback([b] { RunBench(*b); });
-  AddBenchLearning(bench);
 }
 
 }  // namespace jgpm::cli

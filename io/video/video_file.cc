@@ -1,0 +1,102 @@
+#include "io/video/video_file.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "io/base/error.h"
+
+namespace jgpm {
+namespace {
+
+// A damaged frame is ours to report, once, with the file named: FFmpeg's own messages
+// ("[mjpeg @ 0x...] No JPEG data found") are turned off unless the user asks for them.
+// OpenCV reads the level when its FFmpeg back end starts, i.e. at the first capture.
+void QuietFfmpeg() {
+  static const bool quiet = [] { return setenv("OPENCV_FFMPEG_LOGLEVEL", "0", 0) == 0; }();
+  (void)quiet;
+}
+
+// The next frame that decodes, past up to a few that do not (OpenCV's read fails on one
+// and would end the video there); false at the end.
+bool ReadDecodable(cv::VideoCapture* video, int stated, cv::Mat* frame) {
+  constexpr int kBadInARow = 16;
+  for (int tries = 0; tries <= kBadInARow; ++tries) {
+    if (video->read(*frame)) return true;
+    if (stated <= 0 || video->get(cv::CAP_PROP_POS_FRAMES) >= stated) return false;
+  }
+  return false;
+}
+
+cv::VideoCapture OpenVideo(const std::string& path) {
+  QuietFfmpeg();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) ThrowInputError(path, "no such video file");
+  cv::VideoCapture video(path, cv::CAP_FFMPEG);
+  if (!video.isOpened()) ThrowInputError(path, "not a video OpenCV can open (expected e.g. AVI/MJPG or MP4/H.264)");
+  return video;
+}
+
+}  // namespace
+
+VideoFileSource::VideoFileSource(const std::string& path) : path_(path), video_(OpenVideo(path)) {
+  width_ = static_cast<int>(video_.get(cv::CAP_PROP_FRAME_WIDTH));
+  height_ = static_cast<int>(video_.get(cv::CAP_PROP_FRAME_HEIGHT));
+  fps_ = video_.get(cv::CAP_PROP_FPS);
+  if (!(fps_ > 0 && fps_ <= 1000)) ThrowInputError(path, "states no usable frame rate (" + std::to_string(fps_) + ")");
+  const double stated = video_.get(cv::CAP_PROP_FRAME_COUNT);
+  stated_ = std::isfinite(stated) && stated > 0 ? static_cast<int>(stated) : 0;
+  // The damage check: decode everything once. OpenCV skips a frame that does not decode
+  // and goes on; the container time then jumps, which is how skipped frames are counted.
+  cv::VideoCapture scan = OpenVideo(path);
+  cv::Mat frame;
+  double last_ms = -1;
+  int gaps = 0;
+  while (ReadDecodable(&scan, stated_, &frame)) {
+    if (frame.cols != width_ || frame.rows != height_) {
+      ThrowInputError(path, "frame " + std::to_string(decodable_) + " is " + std::to_string(frame.cols) + "x" +
+                                std::to_string(frame.rows) + ", not the stated " + std::to_string(width_) + "x" +
+                                std::to_string(height_));
+    }
+    const double ms = scan.get(cv::CAP_PROP_POS_MSEC);
+    if (last_ms >= 0) gaps += std::max(0, static_cast<int>(std::lround((ms - last_ms) * fps_ / 1000)) - 1);
+    last_ms = ms;
+    ++decodable_;
+  }
+  if (decodable_ == 0) ThrowInputError(path, "has no frame that decodes (empty or damaged video)");
+  // A cut file keeps its header's count; a few frames of slack for containers that round.
+  if (stated_ > 0 && decodable_ + gaps < stated_ - std::max(2, stated_ / 100)) {
+    ThrowInputError(path, "is truncated: only " + std::to_string(decodable_ + gaps) + " of the " +
+                              std::to_string(stated_) + " frames its container states are there");
+  }
+}
+
+bool VideoFileSource::Read(Image* image) {
+  cv::Mat frame;
+  if (!ReadDecodable(&video_, stated_, &frame)) return false;
+  const double t = video_.get(cv::CAP_PROP_POS_MSEC) / 1000;
+  const int index = static_cast<int>(std::lround(t * fps_));
+  skipped_ += std::max(0, index - next_);  // frames that did not decode
+  next_ = index + 1;
+  image->bgr = frame;
+  image->time_s = t;
+  image->index = index;
+  image->latency_ms = 0;
+  return true;
+}
+
+std::vector<cv::Mat> VideoFileSource::Sample(int n) {
+  const std::vector<int> wanted = EvenSample(decodable_, n);
+  std::vector<cv::Mat> frames;
+  cv::VideoCapture scan = OpenVideo(path_);
+  cv::Mat frame;
+  size_t w = 0;
+  for (int k = 0; w < wanted.size() && ReadDecodable(&scan, stated_, &frame); ++k) {  // k counts decodable ones
+    if (k != wanted[w]) continue;
+    frames.push_back(frame.clone());
+    ++w;
+  }
+  return frames;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,70 @@
+#include "tracker/body/body_model.h"
+
+#include <gtest/gtest.h>
+
+#include "io/mocap/asf.h"
+#include "io/mocap/kinematics.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+TEST(BodyModelTest, PartsFollowTheSkeletonAndHaveHumanSize) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
+  const BodyModel body(skeleton, {}, "07.asf");
+  EXPECT_EQ(body.NumParts(), 30);
+  const Eigen::Matrix3Xd rest = Kinematics(skeleton).Compute(
+      std::vector<double>(skeleton.NumChannels(), 0.0).data());
+  const std::vector<Capsule> capsules = body.Place(rest);
+  ASSERT_EQ(capsules.size(), body.parts().size());
+  double top = -1e9, bottom = 1e9, left = 1e9, right = -1e9;
+  for (size_t i = 0; i < capsules.size(); ++i) {
+    const BodyPart& part = body.parts()[i];
+    EXPECT_EQ(capsules[i].from_mm, rest.col(part.from_joint)) << part.name;
+    EXPECT_EQ(capsules[i].to_mm, rest.col(part.to_joint)) << part.name;
+    for (const auto& [p, r] : {std::pair{capsules[i].from_mm, capsules[i].radius_from_mm},
+                               std::pair{capsules[i].to_mm, capsules[i].radius_to_mm}}) {
+      top = std::max(top, p.y() + r);
+      bottom = std::min(bottom, p.y() - r);
+      left = std::min(left, p.x() - r);
+      right = std::max(right, p.x() + r);
+    }
+  }
+  // The rest pose stands with arms out: a person's height and arm span (mm).
+  std::printf("rest pose: height %.0f mm, span %.0f mm\n", top - bottom, right - left);
+  EXPECT_GT(top - bottom, 1500);
+  EXPECT_LT(top - bottom, 2000);
+  EXPECT_GT(right - left, 1400);
+  EXPECT_LT(right - left, 2000);
+  // The femur part runs hip -> knee.
+  const int femur = skeleton.FindBone("lfemur");
+  const auto it = std::find_if(body.parts().begin(), body.parts().end(),
+                               [](const BodyPart& p) { return p.name == "lfemur"; });
+  ASSERT_NE(it, body.parts().end());
+  EXPECT_EQ(it->to_joint, femur);
+  EXPECT_EQ(it->from_joint, skeleton.bones[femur].parent);
+}
+
+TEST(BodyModelTest, WidthScaleScalesEveryRadius) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+  const BodyModel normal(skeleton, {}, "35.asf");
+  BodyModelOptions options;
+  options.width_scale = 1.2;
+  const BodyModel broad(skeleton, options, "35.asf");
+  for (int i = 0; i < normal.NumParts(); ++i) {
+    EXPECT_DOUBLE_EQ(broad.parts()[i].radius_from_mm, 1.2 * normal.parts()[i].radius_from_mm);
+    EXPECT_DOUBLE_EQ(broad.parts()[i].radius_to_mm, 1.2 * normal.parts()[i].radius_to_mm);
+  }
+}
+
+TEST(BodyModelTest, BadInputIsNamed) {
+  Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+  BodyModelOptions options;
+  options.width_scale = 0;
+  test::ExpectInputError([&] { BodyModel(skeleton, options, "35.asf"); }, {"35.asf", "width scale"});
+  skeleton.bones[skeleton.FindBone("ltibia")].name = "lshin";
+  test::ExpectInputError([&] { BodyModel(skeleton, {}, "odd.asf"); }, {"odd.asf", "'ltibia'"});
+}
+
+}  // namespace
+}  // namespace jgpm

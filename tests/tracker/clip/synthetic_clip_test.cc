@@ -1,0 +1,379 @@
+// A synthetic clip must be what it claims: its ground truth is the trial's forward
+// kinematics at the sampled frames, its cameras are the ones the images were rendered
+// through (joints land inside the masks, the walker stays in view), and each degradation
+// does what it says and nothing else.
+#include "tracker/clip/synthetic_clip.h"
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "io/base/json_file.h"
+#include "io/base/text_reader.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/kinematics.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Trial {
+  Skeleton skeleton;
+  Motion motion;
+  ClipSource source;
+};
+const Trial& Walk() {
+  static const Trial trial = [] {
+    Trial t;
+    t.source = {(test::CmuRoot() / "subjects/07/07.asf").string(), (test::CmuRoot() / "subjects/07/07_02.amc").string()};
+    t.skeleton = ReadAsf(t.source.asf);
+    t.motion = ReadAmc(t.source.amc, t.skeleton);
+    return t;
+  }();
+  return trial;
+}
+
+ClipOptions SmallClip() {
+  ClipOptions options;
+  options.rig.width = 160;
+  options.rig.height = 120;
+  options.max_frames = 0;
+  return options;
+}
+
+// Every frame of a video.
+std::vector<cv::Mat> ReadVideo(const fs::path& path) {
+  cv::VideoCapture video(path.string());
+  std::vector<cv::Mat> frames;
+  for (cv::Mat frame; video.read(frame);) frames.push_back(frame.clone());
+  return frames;
+}
+
+TEST(SyntheticClipTest, GroundTruthCamerasAndMasksAgree) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.rig.num_cameras = 3;
+  const ClipSummary summary = RenderClip(walk.skeleton, walk.motion, walk.source, {}, options,
+                                         (dir.path() / "clip").string());
+  std::printf("%s\n", summary.BriefReport().c_str());
+  // 07_02: 329 frames at 120 fps -> frames 0, 4, ..., 328 at 30 fps.
+  EXPECT_EQ(summary.frames, 83);
+  EXPECT_EQ(summary.dropped, 0);
+  const fs::path clip = dir.path() / "clip";
+  EXPECT_FALSE(fs::exists(dir.path() / "clip.partial"));
+  const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+  ASSERT_EQ(truth.frames.size(), 83u);
+  EXPECT_EQ(truth.fps, 30.0);
+  ASSERT_EQ(truth.cameras.size(), 3u);
+  const Kinematics kinematics(walk.skeleton);
+  for (int k = 0; k < 83; ++k) {
+    const ClipFrame& f = truth.frames[k];
+    ASSERT_EQ(f.source_frame, 4 * k);
+    EXPECT_DOUBLE_EQ(f.time_s, k / 30.0);
+    EXPECT_EQ(f.video_frame, k);
+    const Eigen::Matrix3Xd joints = kinematics.Compute(walk.motion.Frame(4 * k));
+    ASSERT_EQ(f.joints_mm.cols(), joints.cols());
+    ASSERT_LE((f.joints_mm - joints).cwiseAbs().maxCoeff(), 0.005 + 1e-9);  // written to 0.01 mm
+  }
+  for (size_t c = 0; c < 3; ++c) {
+    const Camera camera = ReadCameraYaml((clip / ("cam" + std::to_string(c) + ".yaml")).string()).camera;
+    EXPECT_NEAR(camera.fx, truth.cameras[c].fx, 1e-9);
+    EXPECT_TRUE(camera.cam_from_world_rotation.isApprox(truth.cameras[c].cam_from_world_rotation, 1e-12));
+    EXPECT_TRUE(camera.cam_from_world_rotation.isApprox(summary.cameras[c].cam_from_world_rotation, 1e-12));
+    const std::vector<cv::Mat> video = ReadVideo(clip / (camera.name + ".avi"));
+    ASSERT_EQ(video.size(), 83u);
+    EXPECT_EQ(video.back().size(), cv::Size(160, 120));
+    for (int k = 0; k < 83; k += 10) {
+      const cv::Mat mask = cv::imread((clip / "masks" / camera.name / cv::format("%06d.png", k)).string(), cv::IMREAD_UNCHANGED);
+      ASSERT_EQ(mask.size(), cv::Size(160, 120));
+      // The walker stays in view: nothing touches the border, every joint is inside.
+      EXPECT_EQ(cv::countNonZero(mask.row(0)) + cv::countNonZero(mask.row(119)) +
+                    cv::countNonZero(mask.col(0)) + cv::countNonZero(mask.col(159)), 0);
+      // (Within a pixel: at this size a finger is under a pixel wide.)
+      cv::Mat grown;
+      cv::dilate(mask, grown, cv::Mat());
+      const Eigen::Matrix3Xd joints = kinematics.Compute(walk.motion.Frame(4 * k));
+      for (int j = 0; j < joints.cols(); ++j) {
+        Eigen::Vector2d p;
+        ASSERT_TRUE(camera.Project(joints.col(j), &p));
+        EXPECT_EQ(grown.at<uint8_t>(static_cast<int>(std::lround(p.y())), static_cast<int>(std::lround(p.x()))), 255)
+            << camera.name << " frame " << k << " " << walk.skeleton.bones[j].name;
+      }
+      // Without degradations the observed masks are the exact ones.
+      const cv::Mat observed = cv::imread((clip / "observed" / camera.name / cv::format("%06d.png", k)).string(), cv::IMREAD_UNCHANGED);
+      EXPECT_EQ(cv::countNonZero(observed != mask), 0);
+    }
+  }
+  EXPECT_TRUE(fs::exists(clip / "contact_sheet.png"));
+}
+
+TEST(SyntheticClipTest, VideoShowsTheWalkerOverAStaticRoom) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.rig.num_cameras = 1;
+  options.max_frames = 20;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "clip").string());
+  const std::vector<cv::Mat> video = ReadVideo(dir.path() / "clip/cam0.avi");
+  ASSERT_EQ(video.size(), 20u);
+  const cv::Mat& first = video.front();
+  const cv::Mat& last = video.back();
+  const cv::Mat mask0 = cv::imread((dir.path() / "clip/masks/cam0/000000.png").string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat mask19 = cv::imread((dir.path() / "clip/masks/cam0/000019.png").string(), cv::IMREAD_GRAYSCALE);
+  cv::Mat diff;
+  cv::absdiff(first, last, diff);
+  cv::cvtColor(diff, diff, cv::COLOR_BGR2GRAY);
+  // Where neither frame has the walker, only noise and compression differ; where one has
+  // him, the picture changes.
+  const cv::Mat background = (mask0 == 0) & (mask19 == 0), walker = mask0 ^ mask19;
+  const double still = cv::mean(diff, background)[0], moved = cv::mean(diff, walker)[0];
+  std::printf("frame 0 vs 19: mean change %.1f grey levels in the room, %.1f where the walker moved\n", still, moved);
+  EXPECT_LT(still, 6);
+  EXPECT_GT(moved, 25);
+}
+
+// Each degradation, checked against what it promises: the observed mask is the exact one
+// eroded or dilated by 0 or 1 px (the 3x3 ellipse), minus at most 4 holes of radius <= 5,
+// plus clutter blobs; dropped frames have no image or video frame; the light ramps to
+// the gain. A degradation that did more, less or something else fails one of these.
+TEST(SyntheticClipTest, DegradationsDoWhatTheySay) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.rig.num_cameras = 1;
+  options.max_frames = 40;
+  options.degradations.drop_rate = 0.25;
+  options.degradations.mask_noise_px = 1;  // limbs are 3-4 px wide at 160x120
+  options.degradations.holes = 4;
+  options.degradations.clutter_blobs = 3;
+  options.degradations.lighting_gain = 0.5;
+  options.degradations.sensor_noise = 0;
+  const ClipSummary summary = RenderClip(walk.skeleton, walk.motion, walk.source, {}, options,
+                                         (dir.path() / "clip").string());
+  const ClipPaths clip{dir.path() / "clip"};
+  // 39 frames that may drop at 0.25: 9.75 expected, 3-17 covers 99.8% of draws.
+  EXPECT_GE(summary.dropped, 3);
+  EXPECT_LE(summary.dropped, 17);
+  const ClipGroundTruth truth = ReadGroundTruth(clip.GroundTruth());
+  const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(3, 3));
+  constexpr int kHoleArea = 81;  // pixels of a filled circle of radius 5
+  // The clutter as the renderer places it: camera 0's stream, one step per clip frame.
+  std::mt19937_64 rng(options.seed * 1000003);
+  MovingClutter blobs(3, 160, 120, &rng);
+  cv::Mat clutter(120, 160, CV_8UC1);
+  int kept = 0, eroded = 0, dilated = 0, unchanged = 0, holed = 0, cluttered = 0;
+  for (int k = 0; k < 40; ++k) {
+    blobs.Step();
+    const ClipFrame& f = truth.frames[k];
+    ASSERT_EQ(f.dropped, !fs::exists(clip.Mask("cam0", k))) << k;
+    ASSERT_EQ(f.dropped, !fs::exists(clip.ObservedMask("cam0", k))) << k;
+    if (f.dropped) {
+      EXPECT_EQ(f.video_frame, -1);
+      continue;
+    }
+    EXPECT_EQ(f.video_frame, kept++);
+    blobs.Draw(&clutter);
+    const cv::Mat exact = cv::imread(clip.Mask("cam0", k).string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat observed = cv::imread(clip.ObservedMask("cam0", k).string(), cv::IMREAD_GRAYSCALE);
+    EXPECT_EQ(cv::countNonZero(clutter & ~observed), 0) << "frame " << k << ": clutter missing from the mask";
+    // Off the clutter, the observed mask is the exact one, eroded or dilated by <= 1 px,
+    // less the holes: nothing added, at most 4 holes' worth removed.
+    cv::Mat minus, plus;
+    cv::erode(exact, minus, disc);
+    cv::dilate(exact, plus, disc);
+    const cv::Mat off_clutter = clutter == 0;
+    int best = -1, best_missing = 1 << 30;
+    const cv::Mat candidates[] = {exact, minus, plus};
+    for (int i = 0; i < 3; ++i) {
+      if (cv::countNonZero(observed & off_clutter & ~candidates[i]) > 0) continue;
+      const int missing = cv::countNonZero(candidates[i] & off_clutter & ~observed);
+      if (missing < best_missing) best = i, best_missing = missing;
+    }
+    ASSERT_GE(best, 0) << "frame " << k << ": the observed mask is no erosion or dilation by <= 1 px of the exact one";
+    EXPECT_LE(best_missing, 4 * kHoleArea) << "frame " << k << ": more removed than 4 holes";
+    (best == 0 ? unchanged : best == 1 ? eroded : dilated)++;
+    holed += best_missing > 0;
+    cluttered += cv::countNonZero(clutter & ~exact) > 20;
+  }
+  EXPECT_EQ(kept, 40 - summary.dropped);
+  std::printf("%d kept frames: %d unchanged, %d eroded, %d dilated; %d holed, %d with clutter\n", kept, unchanged,
+              eroded, dilated, holed, cluttered);
+  EXPECT_GT(eroded, 0);
+  EXPECT_GT(dilated, 0);
+  EXPECT_GT(holed, kept * 3 / 4);
+  EXPECT_GT(cluttered, kept / 2);
+  const std::vector<cv::Mat> video = ReadVideo(clip.Video("cam0"));
+  ASSERT_EQ(static_cast<int>(video.size()), kept);
+  // Lighting: the last frame is half as bright as the first.
+  const double ratio = cv::mean(video.back())[1] / cv::mean(video.front())[1];
+  std::printf("brightness last/first frame: %.3f (gain 0.5)\n", ratio);
+  EXPECT_NEAR(ratio, 0.5, 0.06);
+}
+
+TEST(SyntheticClipTest, SameSeedSameClip) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.rig.num_cameras = 1;
+  options.max_frames = 8;
+  options.degradations.holes = 3;
+  options.degradations.drop_rate = 0.3;
+  for (const char* name : {"a", "b"})
+    RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / name).string());
+  const nlohmann::json a = ReadJsonFile(dir.path() / "a/ground_truth.json", "a");
+  const nlohmann::json b = ReadJsonFile(dir.path() / "b/ground_truth.json", "b");
+  EXPECT_EQ(a, b);
+  for (int k = 0; k < 8; ++k) {
+    const fs::path pa = dir.path() / "a/observed/cam0" / cv::format("%06d.png", k);
+    if (!fs::exists(pa)) continue;
+    const cv::Mat ma = cv::imread(pa.string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat mb = cv::imread((dir.path() / "b/observed/cam0" / cv::format("%06d.png", k)).string(), cv::IMREAD_GRAYSCALE);
+    EXPECT_EQ(cv::countNonZero(ma != mb), 0);
+  }
+}
+
+TEST(SyntheticClipTest, BadRequestsLeaveNothingBehind) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  const fs::path taken = dir.path() / "taken";
+  fs::create_directories(taken);
+  dir.Write("taken/keep.txt", "mine");
+  test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {}, SmallClip(), taken.string()); },
+                         {"taken", "not empty"});
+  EXPECT_TRUE(fs::exists(taken / "keep.txt"));
+  ClipOptions options = SmallClip();
+  options.fps = 240;
+  test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "x").string()); },
+                         {"fps 240", "exceeds"});
+  options = SmallClip();
+  options.degradations.drop_rate = 1;
+  test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "x").string()); },
+                         {"drop rate"});
+  Camera bad = LookAtCamera("c", 160, 120, 100, {0, 1500, -4000}, {0, 1000, 0});
+  bad.fx = -1;
+  test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {bad}, SmallClip(), (dir.path() / "x").string()); },
+                         {"camera c", "focal"});
+  bad = LookAtCamera("sub/dir", 160, 120, 100, {0, 1500, -4000}, {0, 1000, 0});
+  test::ExpectInputError([&] { RenderClip(walk.skeleton, walk.motion, walk.source, {bad}, SmallClip(), (dir.path() / "x").string()); },
+                         {"sub/dir", "camera name"});
+  // A failure half way (here: the progress callback throws) leaves no half clip.
+  options = SmallClip();
+  options.max_frames = 10;
+  EXPECT_THROW(RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "x").string(),
+                          [](int done, int) { if (done == 5) throw std::runtime_error("stop"); }),
+               std::runtime_error);
+  EXPECT_FALSE(fs::exists(dir.path() / "x"));
+  EXPECT_FALSE(fs::exists(dir.path() / "x.partial"));
+}
+
+// A given camera is used as it is, distortion included: the masks are where the camera's
+// full lens model puts the joints, and measurably not where a pinhole camera would.
+TEST(SyntheticClipTest, GivenCamerasAreUsedAsTheyAre) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  Camera camera = LookAtCamera("left", 200, 150, 150, {-4000, 1600, 0}, {0, 900, 0});
+  camera.distortion = {-0.35, 0.12, 0.002, -0.001, 0};  // strong barrel
+  Camera pinhole = camera;
+  pinhole.distortion.assign(5, 0.0);
+  ClipOptions options = SmallClip();
+  options.max_frames = 12;
+  const ClipSummary summary = RenderClip(walk.skeleton, walk.motion, walk.source, {camera}, options,
+                                         (dir.path() / "clip/").string());
+  ASSERT_EQ(summary.cameras.size(), 1u);
+  const ClipPaths clip{dir.path() / "clip"};
+  const CameraFile file = ReadCameraYaml(clip.CameraYaml("left").string());
+  EXPECT_TRUE(file.has_extrinsics);
+  EXPECT_EQ(file.camera.distortion, camera.distortion);
+  const ClipGroundTruth truth = ReadGroundTruth(clip.GroundTruth());
+  int inside = 0, inside_pinhole = 0, joints = 0;
+  double shift = 0;
+  for (int k = 0; k < 12; ++k) {
+    const cv::Mat mask = cv::imread(clip.Mask("left", k).string(), cv::IMREAD_GRAYSCALE);
+    ASSERT_EQ(mask.size(), cv::Size(200, 150));
+    cv::Mat grown;
+    cv::dilate(mask, grown, cv::Mat());
+    const Eigen::Matrix3Xd& j = truth.frames[k].joints_mm;
+    for (int b = 0; b < j.cols(); ++b) {
+      Eigen::Vector2d p, q;
+      ASSERT_TRUE(camera.Project(j.col(b), &p));
+      ASSERT_TRUE(pinhole.Project(j.col(b), &q));
+      auto in_mask = [&](const Eigen::Vector2d& x) {
+        const int u = static_cast<int>(std::lround(x.x())), v = static_cast<int>(std::lround(x.y()));
+        return u >= 0 && v >= 0 && u < 200 && v < 150 && grown.at<uint8_t>(v, u) == 255;
+      };
+      inside += in_mask(p);
+      inside_pinhole += in_mask(q);
+      shift += (p - q).norm();
+      ++joints;
+    }
+  }
+  std::printf("joints in the mask: %d of %d through the lens, %d as a pinhole; mean lens shift %.1f px\n", inside,
+              joints, inside_pinhole, shift / joints);
+  EXPECT_EQ(inside, joints);
+  EXPECT_GT(shift / joints, 3.0);           // the lens matters here...
+  EXPECT_LT(inside_pinhole, joints * 0.9);  // ...and a pinhole mask would miss joints
+}
+
+// An existing DIR.partial belongs to another render (or one that was stopped): it is
+// refused, and kept as it was. It used to be removed.
+TEST(SyntheticClipTest, AnotherRendersPartialFolderIsLeftAlone) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  fs::create_directories(dir.path() / "clip.partial");
+  dir.Write("clip.partial/cam0.avi", "someone else's");
+  ClipOptions options = SmallClip();
+  options.max_frames = 2;
+  test::ExpectInputError(
+      [&] { RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "clip").string()); },
+      {"clip.partial", "another run"});
+  EXPECT_EQ(ReadTextFile(dir.path() / "clip.partial/cam0.avi", "avi"), "someone else's");
+  EXPECT_FALSE(fs::exists(dir.path() / "clip"));
+}
+
+// ground_truth.json reads back to what was written, and every malformed edit is refused
+// naming the file and the field.
+TEST(ClipFormat, GroundTruthRoundTripAndMalformedInput) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.max_frames = 5;
+  options.degradations.drop_rate = 0.5;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "clip").string());
+  const std::string text = ReadTextFile(dir.path() / "clip/ground_truth.json", "truth");
+  const ClipGroundTruth truth = ParseGroundTruth(text, "gt.json");
+  EXPECT_EQ(FormatGroundTruth(truth), text);
+  EXPECT_EQ(truth.cameras.size(), 2u);
+  EXPECT_EQ(truth.joint_names.size(), walk.skeleton.bones.size());
+  const struct {
+    const char* from;
+    const char* to;
+    const char* phrase;
+  } cases[] = {
+      {"\"version\": 1", "\"version\": 2", "version 2 is not supported"},
+      {"\"format\": \"jgpm synthetic clip\"", "\"format\": \"clip\"", "not a synthetic clip"},
+      {"\"fx\": ", "\"fx\": -", "invalid camera"},
+      {"\"frame\": 1,", "\"frame\": 2,", "frames[1].frame"},
+      {"\"joints_mm\": [\n", "\"joints_mm\": [\n[1, 2, 3],\n", "joint_names"},
+      {"\"drop_rate\": 0.5", "\"drop_rate\": 1.5", "drop rate"},
+      {"\"fps\": 30.0", "\"fps\": 1e999", "number overflow"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.from);
+    test::ExpectInputError([&] { ParseGroundTruth(test::Replace(text, c.from, c.to), "gt.json"); }, {"gt.json", c.phrase});
+  }
+  // A dropped frame's video frame is null; a kept one's is the next in order.
+  for (const ClipFrame& f : truth.frames) EXPECT_EQ(f.dropped, f.video_frame < 0);
+}
+
+}  // namespace
+}  // namespace jgpm

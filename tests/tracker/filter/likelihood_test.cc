@@ -1,0 +1,164 @@
+// The tracker's likelihood against oracles: its pixel counts equal brute-force counts of
+// the same images; on exact silhouettes of a real walk it is lowest at the true body and
+// grows as the body is moved, turned or taken to another phase of the walk; and the bodies
+// a one-sided score would accept (shrunk into the mask, legs collapsed onto each other)
+// cost more than the true one.
+#include "tracker/filter/likelihood.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/kinematics.h"
+#include "test_support.h"
+#include "tracker/body/body_model.h"
+#include "tracker/body/ray_caster.h"
+
+namespace jgpm {
+namespace {
+
+struct Scene {
+  Skeleton skeleton;
+  Motion motion;
+  std::vector<Camera> cameras;
+};
+
+const Scene& Walk() {
+  static const Scene scene = [] {
+    Scene s;
+    s.skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+    s.motion = ReadAmc(test::CmuRoot() / "subjects/35/35_01.amc", s.skeleton);
+    const Eigen::Matrix3Xd first = Kinematics(s.skeleton).Compute(s.motion.Frame(120));
+    const Eigen::Vector3d at(first(0, 0), 900, first(2, 0));
+    s.cameras.push_back(LookAtCamera("side", 320, 240, 330, at + Eigen::Vector3d(4200, 600, 0), at));
+    s.cameras.push_back(LookAtCamera("front", 320, 240, 330, at + Eigen::Vector3d(300, 600, 4200), at));
+    s.cameras[1].distortion = {-0.15, 0.03, 0, 0, 0};
+    return s;
+  }();
+  return scene;
+}
+
+std::vector<Capsule> Body(const Scene& s, const Eigen::Matrix3Xd& joints, double size = 1) {
+  std::vector<Capsule> capsules = BodyModel(s.skeleton, {}, "35.asf").Place(joints);
+  for (Capsule& c : capsules) c.radius_from_mm *= size, c.radius_to_mm *= size;
+  return capsules;
+}
+
+// Exact silhouettes (the ray caster) of frame `f` in every camera, with regions about them.
+std::vector<CameraObservation> Observe(const Scene& s, const SilhouetteLikelihood& likelihood, int f) {
+  const Eigen::Matrix3Xd joints = Kinematics(s.skeleton).Compute(s.motion.Frame(f));
+  std::vector<CameraObservation> out;
+  for (const Camera& camera : s.cameras) {
+    BodyImage image;
+    RayCaster(camera).Render(Body(s, joints), &image);
+    const cv::Mat mask = image.Mask();
+    cv::Rect box = cv::boundingRect(mask);
+    box = cv::Rect(box.x - 20, box.y - 20, box.width + 40, box.height + 40);
+    out.push_back(likelihood.Observe(mask, box));
+  }
+  return out;
+}
+
+TEST(Likelihood, CountsEqualBruteForce) {
+  const Scene& s = Walk();
+  const SilhouetteLikelihood likelihood(s.cameras);
+  const std::vector<CameraObservation> observed = Observe(s, likelihood, 120);
+  // A body off from the truth (another frame, moved): something in every count.
+  Eigen::Matrix3Xd joints = Kinematics(s.skeleton).Compute(s.motion.Frame(135));
+  joints.colwise() += Eigen::Vector3d(40, 0, -30);
+  const std::vector<Capsule> body = Body(s, joints);
+  SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+  std::vector<CameraScore> scores;
+  likelihood.Cost(body, observed, &workspace, &scores);
+  const cv::Mat grow = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+  for (size_t c = 0; c < s.cameras.size(); ++c) {
+    BitMask bits(s.cameras[c].width, s.cameras[c].height);
+    BitSilhouetteRenderer(s.cameras[c]).Draw(body, &bits);
+    const cv::Mat model = bits.ToMat();
+    cv::Mat region = cv::Mat::zeros(model.size(), CV_8UC1);
+    region(observed[c].region()).setTo(255);
+    const cv::Mat seen = observed[c].mask() & region;
+    cv::Mat model_grown, seen_grown;
+    cv::dilate(model, model_grown, grow);
+    cv::dilate(seen, seen_grown, grow);
+    EXPECT_EQ(scores[c].model_px, cv::countNonZero(model)) << c;
+    EXPECT_EQ(scores[c].observed_px, cv::countNonZero(seen)) << c;
+    EXPECT_EQ(scores[c].overlap_px, cv::countNonZero(model & seen)) << c;
+    EXPECT_EQ(scores[c].outside_px, cv::countNonZero(model & ~seen_grown)) << c;
+    EXPECT_EQ(scores[c].unexplained_px, cv::countNonZero(seen & ~model_grown)) << c;
+    EXPECT_GT(scores[c].outside_px, 10);
+    EXPECT_GT(scores[c].unexplained_px, 10);
+    // And the workspace is blank again for the next body.
+    EXPECT_EQ(workspace.canvas[c].Count(), 0);
+  }
+}
+
+TEST(Likelihood, LowestAtTheTruthAndGrowingAwayFromIt) {
+  const Scene& s = Walk();
+  const SilhouetteLikelihood likelihood(s.cameras);
+  const int f = 120;
+  const std::vector<CameraObservation> observed = Observe(s, likelihood, f);
+  const Kinematics kinematics(s.skeleton);
+  const Eigen::Matrix3Xd truth = kinematics.Compute(s.motion.Frame(f));
+  SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+  auto cost = [&](const Eigen::Matrix3Xd& joints, double size = 1) {
+    return likelihood.Cost(Body(s, joints, size), observed, &workspace);
+  };
+  const double best = cost(truth);
+  // Moved along the floor, turned about the vertical through the root, later in the walk
+  // (the root kept, so only the pose's phase differs).
+  std::vector<double> moved, turned, phased;
+  for (double d : {0.0, 25.0, 60.0, 120.0, 250.0}) {
+    Eigen::Matrix3Xd j = truth;
+    j.colwise() += Eigen::Vector3d(d, 0, 0.5 * d);
+    moved.push_back(cost(j));
+  }
+  for (double degrees : {0.0, 6.0, 15.0, 35.0, 70.0}) {
+    const Eigen::Matrix3d r = AxisRotation(Axis::kY, degrees);
+    turned.push_back(cost((r * (truth.colwise() - truth.col(0))).colwise() + truth.col(0)));
+  }
+  for (int k : {0, 3, 8, 16, 30}) {
+    Eigen::Matrix3Xd j = kinematics.Compute(s.motion.Frame(f + k));
+    j.colwise() += truth.col(0) - j.col(0);
+    phased.push_back(cost(j));
+  }
+  for (const auto* series : {&moved, &turned, &phased}) {
+    EXPECT_DOUBLE_EQ((*series)[0], best);
+    for (size_t i = 1; i < series->size(); ++i) EXPECT_GT((*series)[i], (*series)[i - 1]) << "step " << i;
+  }
+  // What a one-sided score accepts: a body shrunk into the mask (thinner limbs, or all of
+  // it smaller, standing where it stood), and both legs in one place.
+  EXPECT_LT(best, 0.02);
+  EXPECT_GT(cost(truth, 0.8), best + 0.015);
+  Eigen::Matrix3Xd smaller = truth;
+  const Eigen::Vector3d floor(truth(0, 0), 0, truth(2, 0));
+  smaller = (0.85 * (truth.colwise() - floor)).colwise() + floor;
+  EXPECT_GT(cost(smaller, 0.85), best + 0.1);
+  Eigen::Matrix3Xd collapsed = truth;
+  for (const char* side : {"hipjoint", "femur", "tibia", "foot", "toes"}) {
+    const int left = s.skeleton.FindBone(std::string("l") + side), right = s.skeleton.FindBone(std::string("r") + side);
+    const Eigen::Vector3d hips = truth.col(s.skeleton.FindBone("rhipjoint")) - truth.col(s.skeleton.FindBone("lhipjoint"));
+    collapsed.col(right) = truth.col(left) + hips;  // the right leg where the left one is, at its own hip
+  }
+  EXPECT_GT(cost(collapsed), best + 0.1);
+}
+
+TEST(Likelihood, EmptyMasksAndNothingDrawnAreFinite) {
+  const Scene& s = Walk();
+  const SilhouetteLikelihood likelihood(s.cameras);
+  const cv::Mat empty = cv::Mat::zeros(240, 320, CV_8UC1);
+  std::vector<CameraObservation> nobody = {likelihood.Observe(empty, {0, 0, 320, 240}),
+                                           likelihood.Observe(empty, {0, 0, 320, 240})};
+  SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+  const Eigen::Matrix3Xd truth = Kinematics(s.skeleton).Compute(s.motion.Frame(0));
+  const double drawn = likelihood.Cost(Body(s, truth), nobody, &workspace);
+  EXPECT_TRUE(std::isfinite(drawn));
+  EXPECT_GT(drawn, 1.0);  // a body where nobody is costs
+  EXPECT_EQ(likelihood.Cost({}, nobody, &workspace), 0.0);  // nobody where nobody is does not
+}
+
+}  // namespace
+}  // namespace jgpm

@@ -1,0 +1,228 @@
+// The tracker end to end (RunTrackJob, as `jgpm track` runs it) on a clip whose truth is
+// exact: a short two-camera clip of the unseen test subject (07_01) tracked from the masks
+// alone with an ML-JGPM prior must come within a stated mean error of the true joints;
+// the same masks shuffled in time must be tracked much worse (the masks, not the prior's
+// idea of a walk, make the result); and one seed gives byte-identical results with one
+// thread or two.
+#include "tracker/filter/tracker.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "io/base/text_reader.h"
+#include "io/gait/gait_dataset.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "prior/model/model_file.h"
+#include "prior/model/train.h"
+#include "test_support.h"
+#include "tracker/clip/synthetic_clip.h"
+#include "tracker/run/track_job.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kFrames = 25;
+
+// An ML-JGPM torus prior from five training trials (subjects 02, 05, 35), a few full
+// iterations (the table and the tracker take whatever the model is), and a 25-frame clip
+// of the test subject from the default two cameras at 160x120. Made once per program.
+struct Fixture {
+  test::TempDir dir;
+  fs::path model, clip;
+};
+const Fixture& Shared() {
+  static Fixture fixture;  // its folder is removed at exit
+  static const bool made = [] {
+    Fixture* f = &fixture;
+    std::vector<TrialId> trials = test::SplitTrials("train");
+    trials.resize(5);
+    const GaitDataset dataset = PrepareGaitDataset(test::CmuRoot(), "five", trials, GaitCycleOptions{});
+    TrainingOptions training;
+    training.kind = ModelKind::kMljgpmTorus;
+    training.full.max_iterations = 5;
+    const GaitTrial& first = dataset.trials[0];
+    const auto model =
+        TrainGaitModel(dataset, {first.id.name, ReadTextFile(test::CmuRoot() / first.asf, "asf")}, training);
+    f->model = f->dir.path() / "mljgpm.json";
+    WriteModelFile(f->model, *model);
+
+    const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
+                               (test::CmuRoot() / "subjects/07/07_01.amc").string()};
+    const Skeleton skeleton = ReadAsf(source.asf);
+    const Motion motion = ReadAmc(source.amc, skeleton);
+    ClipOptions clip;
+    clip.max_frames = kFrames;
+    clip.rig.num_cameras = 2;
+    clip.rig.width = 160;
+    clip.rig.height = 120;
+    clip.contact_sheet = false;
+    f->clip = f->dir.path() / "clip";
+    RenderClip(skeleton, motion, source, {}, clip, f->clip.string());
+    return true;
+  }();
+  (void)made;
+  return fixture;
+}
+
+// A small budget: 2 cameras at 160x120, 150 particles x 4 layers.
+TrackJobOptions Job(const fs::path& clip, int threads, const fs::path& out = {}) {
+  TrackJobOptions job;
+  job.model = Shared().model.string();
+  job.source.clip = clip.string();
+  job.out = out.string();
+  job.overlays = false;
+  job.tracker.threads = threads;
+  job.tracker.annealing.particles = 150;
+  job.tracker.annealing.layers = 4;
+  job.tracker.annealing.seed = 7;
+  return job;
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The clip with each camera's observed masks permuted in time (one permutation for all
+// cameras, so the views still agree with each other but not with the truth or the walk).
+fs::path ShuffledCopy(const fs::path& clip, const fs::path& to) {
+  fs::copy(clip, to, fs::copy_options::recursive);
+  std::vector<int> order(kFrames);
+  for (int k = 0; k < kFrames; ++k) order[k] = k;
+  std::mt19937 rng(3);
+  std::shuffle(order.begin(), order.end(), rng);
+  for (const auto& entry : fs::directory_iterator(clip / "observed")) {
+    const fs::path camera = entry.path().filename();
+    for (int k = 0; k < kFrames; ++k) {
+      const std::string name = ClipFrameName(k), source = ClipFrameName(order[k]);
+      fs::copy_file(clip / "observed" / camera / source, to / "observed" / camera / name,
+                    fs::copy_options::overwrite_existing);
+    }
+  }
+  return to;
+}
+
+// Mean horizontal distance (mm) of the tracked root from the true one.
+double RootError(const TrackRun& run, const ClipGroundTruth& truth) {
+  double sum = 0;
+  for (const TrackedFrame& f : run.frames) {
+    const Eigen::Vector3d d = f.joints_mm.col(0) - truth.frames[f.index].joints_mm.col(0);  // bone 0: the root
+    sum += std::hypot(d.x(), d.z()) / run.frames.size();
+  }
+  return sum;
+}
+
+void Print(const char* what, const TrackJobResult& r, const ClipGroundTruth& truth) {
+  const TrackErrors& e = r.errors->bodytrack14;
+  std::printf("%-9s %6.1f mm absolute, %6.1f root-relative, %6.1f Procrustes, legs swapped in %2.0f%% of frames, "
+              "root %5.1f mm off, %.2f s\n",
+              what, e.absolute_mm, e.root_relative_mm, e.procrustes_mm, 100 * e.swap_rate, RootError(r.run, truth),
+              r.run.tracking_seconds);
+}
+
+// Bounds, from the masks alone: measured 80 mm with this seed (76-84 mm over seeds 3-7):
+// the pose is right (30-45 mm per frame) except while the legs are swapped, which
+// silhouettes barely tell apart (tracker/filter/tracker.h): this clip starts with them swapped
+// and the tracker turns them round after 7-9 of its 25 frames. The root is placed within
+// 28-32 mm. From the truth (`--init truth`): 44 mm (37-50 over seeds 3-7, never swapped).
+// Shuffled in time the masks put the walker 400 mm from where the truth is: measured
+// 526 mm (512-534 over seeds).
+constexpr double kAutoBoundMm = 130, kTruthStartBoundMm = 70, kRootBoundMm = 60;
+
+TEST(Tracker, TracksAWalkAndNotItsShuffledMasks) {
+  const Fixture& f = Shared();
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  const TrackJobResult result = RunTrackJob(Job(f.clip, 2));
+  ASSERT_EQ(static_cast<int>(result.run.frames.size()), kFrames);
+  ASSERT_TRUE(result.errors.has_value());
+  Print("clip:", result, truth);
+  int tracked = 0;
+  for (const TrackedFrame& frame : result.run.frames) tracked += frame.status == TrackStatus::kTracked;
+  EXPECT_EQ(tracked, kFrames);
+  const TrackErrors& e = result.errors->bodytrack14;
+  EXPECT_EQ(e.frames, kFrames);
+  EXPECT_LT(e.absolute_mm, kAutoBoundMm);
+  EXPECT_LT(RootError(result.run, truth), kRootBoundMm);
+
+  TrackJobOptions from_truth = Job(f.clip, 2);
+  from_truth.truth_start = true;
+  const TrackJobResult started = RunTrackJob(from_truth);
+  ASSERT_TRUE(started.errors.has_value());
+  Print("truth:", started, truth);
+  EXPECT_LT(started.errors->bodytrack14.absolute_mm, kTruthStartBoundMm);
+  EXPECT_LT(RootError(started.run, truth), kRootBoundMm);
+
+  test::TempDir scratch;
+  const fs::path shuffled = ShuffledCopy(f.clip, scratch.path() / "shuffled");
+  const TrackJobResult bad = RunTrackJob(Job(shuffled, 2));
+  ASSERT_TRUE(bad.errors.has_value());
+  Print("shuffled:", bad, truth);
+  EXPECT_GT(bad.errors->bodytrack14.absolute_mm, 1.5 * e.absolute_mm);
+  EXPECT_GT(bad.errors->bodytrack14.absolute_mm, 300);
+}
+
+// The posture offset as a per-person state (--adapt posture, off by default: measured no
+// better on the suite) tracks the walk within the same bound, and does change the result.
+TEST(Tracker, TracksAWalkWithPostureAdaptation) {
+  const Fixture& f = Shared();
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  TrackJobOptions job = Job(f.clip, 2);
+  job.tracker.refinement.adapt_posture = true;
+  const TrackJobResult adapted = RunTrackJob(job);
+  ASSERT_TRUE(adapted.errors.has_value());
+  Print("posture:", adapted, truth);
+  EXPECT_LT(adapted.errors->bodytrack14.absolute_mm, kAutoBoundMm);
+  EXPECT_LT(RootError(adapted.run, truth), kRootBoundMm);
+  const TrackJobResult plain = RunTrackJob(Job(f.clip, 2));
+  EXPECT_NE(adapted.errors->bodytrack14.absolute_mm, plain.errors->bodytrack14.absolute_mm);
+}
+
+// Every likelihood evaluation is counted: without the refinement, a tracked frame costs
+// particles x layers and the two scores of the mirror test; the first frame weighs
+// start_particle_factor times the particles in its first layer, then the usual number in
+// each of its other start_layers - 1 layers.
+TEST(Tracker, CountsEveryEvaluation) {
+  const Fixture& f = Shared();
+  TrackJobOptions job = Job(f.clip, 2);
+  job.tracker.refinement.enabled = false;
+  job.source.max_frames = 6;
+  const TrackJobResult result = RunTrackJob(job);
+  const AnnealingOptions& a = job.tracker.annealing;
+  ASSERT_EQ(result.run.frames.size(), 6u);
+  for (const TrackedFrame& frame : result.run.frames) {
+    if (frame.status != TrackStatus::kTracked) continue;
+    const int expected = frame.index == 0 ? a.particles * (job.tracker.start_particle_factor + job.tracker.start_layers - 1) + 2
+                                          : a.particles * a.layers + 2;
+    EXPECT_EQ(frame.evaluations, expected) << "frame " << frame.index;
+  }
+}
+
+TEST(Tracker, OneSeedGivesTheSameResultWithAnyThreads) {
+  const Fixture& f = Shared();
+  test::TempDir out;
+  RunTrackJob(Job(f.clip, 1, out.path() / "one"));
+  RunTrackJob(Job(f.clip, 2, out.path() / "two"));
+  for (const char* file : {"poses.json", "tracked.bvh", "tracked.amc"}) {
+    const std::string a = ReadBytes(out.path() / "one" / file), b = ReadBytes(out.path() / "two" / file);
+    ASSERT_GT(a.size(), 1000u) << file;
+    EXPECT_TRUE(a == b) << file << " differs between 1 and 2 threads";
+  }
+  // And the seed matters: another one gives another track.
+  TrackJobOptions other = Job(f.clip, 2, out.path() / "other");
+  other.tracker.annealing.seed = 8;
+  RunTrackJob(other);
+  EXPECT_NE(ReadBytes(out.path() / "one" / "poses.json"), ReadBytes(out.path() / "other" / "poses.json"));
+}
+
+}  // namespace
+}  // namespace jgpm

@@ -1,0 +1,166 @@
+// Background subtraction against the renderer's exact silhouettes: a clip of the test
+// subject is rendered (textured room, sensor noise, MJPG; and a degraded one with moving
+// clutter and a brightening light), its videos are turned into masks as a real video's
+// would be, and the masks are compared with the exact masks of the same frames: IoU in
+// the person's neighbourhood (the exact silhouette's box grown by half its height; clutter
+// elsewhere is the tracker's to ignore, as in the clip's own degraded masks).
+#include "tracker/frames/foreground.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "io/base/error.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "test_support.h"
+#include "tracker/clip/synthetic_clip.h"
+#include "tracker/frames/clip_source.h"
+
+namespace jgpm {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path Render(const test::TempDir& dir, const std::string& name, const ClipDegradations& degradations, int cameras) {
+  const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
+                             (test::CmuRoot() / "subjects/07/07_01.amc").string()};
+  const Skeleton skeleton = ReadAsf(source.asf);
+  const Motion motion = ReadAmc(source.amc, skeleton);
+  ClipOptions clip;
+  clip.rig.num_cameras = cameras;
+  clip.rig.width = 320;
+  clip.rig.height = 240;
+  clip.degradations = degradations;
+  clip.contact_sheet = false;
+  const fs::path out = dir.path() / name;
+  RenderClip(skeleton, motion, source, {}, clip, out.string());
+  return out;
+}
+
+double Iou(const cv::Mat& computed, const cv::Mat& exact) {
+  cv::Rect box = cv::boundingRect(exact);
+  const int grow = box.height / 2;
+  box = cv::Rect(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow) &
+        cv::Rect(0, 0, exact.cols, exact.rows);
+  const cv::Mat a = computed(box), b = exact(box);
+  const double both = cv::countNonZero(a & b), either = cv::countNonZero(a | b);
+  return either > 0 ? both / either : 1.0;
+}
+
+// Mean and worst IoU of the computed masks against the exact ones, per camera, over the
+// frames not dropped.
+struct Overlap {
+  double mean = 0, worst = 1;
+};
+// `options` empty: the clip's own degraded masks (the renderer's model of a segmentation).
+Overlap Measure(const fs::path& clip, const std::optional<ForegroundOptions>& options, bool learn = false) {
+  ClipFrameSourceOptions computed_options;
+  computed_options.foreground = options;
+  computed_options.learn_background = learn;
+  ClipFrameSource computed(clip, computed_options);
+  ClipFrameSourceOptions exact_options;
+  exact_options.exact_masks = true;
+  ClipFrameSource exact(clip, exact_options);
+  Frame a, b;
+  Overlap o;
+  int n = 0;
+  while (computed.Next(&a) && exact.Next(&b)) {
+    EXPECT_EQ(a.index, b.index);
+    if (a.dropped) continue;
+    for (size_t c = 0; c < a.masks.size(); ++c) {
+      const double iou = Iou(a.masks[c], b.masks[c]);
+      o.mean += iou;
+      o.worst = std::min(o.worst, iou);
+      ++n;
+    }
+  }
+  o.mean /= n;
+  return o;
+}
+
+struct Clips {
+  test::TempDir dir;
+  fs::path clean, degraded;
+};
+const Clips& Shared() {
+  static Clips clips;
+  static const bool made = [] {
+    clips.clean = Render(clips.dir, "clean", ClipDegradations{}, 4);
+    ClipDegradations d;
+    d.clutter_blobs = 3;
+    d.lighting_gain = 1.4;
+    d.drop_rate = 0.05;
+    d.mask_noise_px = 1;
+    d.holes = 2;
+    clips.degraded = Render(clips.dir, "degraded", d, 2);
+    return true;
+  }();
+  (void)made;
+  return clips;
+}
+
+TEST(Foreground, Mog2MasksOverlapTheExactSilhouettes) {
+  const Overlap clean = Measure(Shared().clean, ForegroundOptions{});
+  std::printf("MOG2, clean clip (4 cameras), from the empty room: IoU mean %.3f, worst %.3f\n", clean.mean, clean.worst);
+  EXPECT_GT(clean.mean, 0.85);
+  EXPECT_GT(clean.worst, 0.6);
+  const Overlap learnt = Measure(Shared().clean, ForegroundOptions{}, true);
+  std::printf("MOG2, clean clip (4 cameras), room learnt from 60 frames: IoU mean %.3f, worst %.3f\n", learnt.mean,
+              learnt.worst);
+}
+
+TEST(Foreground, KnnMasksOverlapTheExactSilhouettes) {
+  ForegroundOptions knn;
+  knn.method = ForegroundMethod::kKnn;
+  const Overlap clean = Measure(Shared().clean, knn);
+  std::printf("KNN, clean clip (4 cameras): IoU mean %.3f, worst %.3f\n", clean.mean, clean.worst);
+  EXPECT_GT(clean.mean, 0.85);
+  EXPECT_GT(clean.worst, 0.6);
+}
+
+TEST(Foreground, HoldsUnderClutterAndALightingChange) {
+  const Overlap degraded = Measure(Shared().degraded, ForegroundOptions{});
+  ForegroundOptions uncompensated;
+  uncompensated.gain_compensation = false;
+  const Overlap without = Measure(Shared().degraded, uncompensated);
+  const Overlap observed = Measure(Shared().degraded, std::nullopt);
+  std::printf("MOG2, degraded clip (clutter, light to 1.4): IoU mean %.3f, worst %.3f; without gain compensation "
+              "%.3f, %.3f; the clip's own degraded masks %.3f, %.3f\n",
+              degraded.mean, degraded.worst, without.mean, without.worst, observed.mean, observed.worst);
+  EXPECT_GT(degraded.mean, 0.5);
+  EXPECT_GT(degraded.mean, observed.mean - 0.05);  // as good as the renderer's model of a segmentation
+  EXPECT_GT(degraded.mean, without.mean + 0.1);  // the compensation is what holds under the change
+}
+
+TEST(Foreground, RemoveSpecksKeepsEveryBlobButSpecks) {
+  cv::Mat mask = cv::Mat::zeros(240, 320, CV_8UC1);
+  cv::rectangle(mask, cv::Rect(100, 40, 40, 150), 255, cv::FILLED);  // the body
+  cv::rectangle(mask, cv::Rect(145, 60, 4, 10), 255, cv::FILLED);    // a hand cut off, 40 px
+  cv::rectangle(mask, cv::Rect(280, 200, 30, 30), 255, cv::FILLED);  // someone else
+  cv::rectangle(mask, cv::Rect(20, 20, 6, 6), 255, cv::FILLED);      // a speck, 36 px
+  RemoveSpecks(&mask, ForegroundOptions{}.min_area);
+  EXPECT_EQ(cv::countNonZero(mask), 40 * 150 + 4 * 10 + 30 * 30);
+  EXPECT_EQ(mask.at<uint8_t>(22, 22), 0);
+}
+
+TEST(Foreground, LearnTakesThePerPixelMedian) {
+  std::vector<cv::Mat> images;
+  for (int k = 0; k < 5; ++k) images.emplace_back(4, 4, CV_8UC3, cv::Scalar(10 * k, 100, 200 - k));
+  images[0].at<cv::Vec3b>(1, 1) = cv::Vec3b(255, 255, 255);  // someone passing
+  ForegroundExtractor extractor(ForegroundOptions{}, 4, 4);
+  extractor.Learn(images);
+  EXPECT_EQ(extractor.background().at<cv::Vec3b>(0, 0), cv::Vec3b(20, 100, 198));
+  EXPECT_EQ(extractor.background().at<cv::Vec3b>(1, 1), cv::Vec3b(30, 100, 198));
+}
+
+TEST(Foreground, RefusesBadOptions) {
+  ForegroundOptions o;
+  o.learning_frames = 0;
+  EXPECT_THROW(ForegroundExtractor(o, 32, 32), InputError);
+}
+
+}  // namespace
+}  // namespace jgpm

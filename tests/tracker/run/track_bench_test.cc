@@ -1,0 +1,75 @@
+// The benchmark's tables: one line per row (track.csv), per row and joint (joints.csv) and
+// per row and frame (frames.csv), with the values given, in the order given. The prior's
+// floors: on the model's own skeleton the best size can only improve on size 1 (which is
+// the subject floor there); on another subject's skeleton the same angles land elsewhere.
+#include "tracker/run/track_bench.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "io/base/text_reader.h"
+#include "io/gait/gait_dataset.h"
+#include "prior/model/train.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+TEST(TrackBench, TablesHoldEveryRowJointAndFrame) {
+  TrackBenchRow a;
+  a.clip = "c1", a.model = "m", a.method = "prior", a.cameras = 4, a.frames = 3, a.seeds = 2;
+  a.bt14_mm = 12.345, a.fps = 30.5, a.evaluations_per_frame = 930;
+  a.joints = {"lfemur", "rfemur"};
+  a.per_joint_mm = {10.004, 20.5};
+  a.per_frame_mm = {1, std::nan(""), 3.25};
+  TrackBenchRow b = a;
+  b.method = "joint-space", b.floor_g17_root_mm = -1;
+  const std::string track = TrackBenchCsv({a, b});
+  EXPECT_EQ(std::count(track.begin(), track.end(), '\n'), 3);
+  EXPECT_NE(track.find("\nc1,m,prior,4,3,2,12.35,"), std::string::npos) << track;
+  EXPECT_NE(track.find("\nc1,m,joint-space,4,3,2,"), std::string::npos) << track;
+  EXPECT_EQ(TrackBenchJointsCsv({a}),
+            "clip,model,method,joint,mm\nc1,m,prior,lfemur,10.00\nc1,m,prior,rfemur,20.50\n");
+  EXPECT_EQ(TrackBenchFramesCsv({a}),
+            "clip,model,method,frame,mm\nc1,m,prior,0,1.00\nc1,m,prior,1,nan\nc1,m,prior,2,3.25\n");
+}
+
+ClipGroundTruth Trial(const std::string& subject, const std::string& trial, int frames) {
+  ClipGroundTruth truth;
+  truth.source_asf = (test::CmuRoot() / "subjects" / subject / (subject + ".asf")).string();
+  truth.source_amc = (test::CmuRoot() / "subjects" / subject / (trial + ".amc")).string();
+  for (int k = 0; k < frames; ++k) {
+    ClipFrame frame;
+    frame.time_s = k / 30.0;
+    frame.source_frame = 4 * k;
+    truth.frames.push_back(frame);
+  }
+  return truth;
+}
+
+TEST(TrackBench, FloorsOnTheSubjectsAndTheModelsSkeleton) {
+  const std::vector<TrialId> trials = {{"35", "35_01"}, {"35", "35_02"}, {"35", "35_03"}};
+  const GaitDataset dataset = PrepareGaitDataset(test::CmuRoot(), "three", trials, GaitCycleOptions{});
+  TrainingOptions training;
+  training.kind = ModelKind::kPca;
+  const auto model = TrainGaitModel(
+      dataset, {"35_01", ReadTextFile(test::CmuRoot() / "subjects/35/35.asf", "asf")}, training);
+  const PriorFloors own = ModelFloors(*model, Trial("35", "35_12", 40), 40);
+  EXPECT_GT(own.subject_g17, 5);
+  EXPECT_GT(own.subject_bt14, 5);
+  EXPECT_LE(own.model_g17, own.subject_g17 + 1e-9);
+  EXPECT_GT(own.model_g17, 0.8 * own.subject_g17);
+  const PriorFloors other = ModelFloors(*model, Trial("39", "39_12", 40), 40);
+  EXPECT_GT(other.subject_g17, 5);
+  EXPECT_GT(other.model_g17, other.subject_g17 + 10);
+  const PriorFloors none = ModelFloors(*model, Trial("39", "no_such_trial", 40), 40);
+  EXPECT_EQ(none.subject_g17, -1);
+  EXPECT_EQ(none.model_g17, -1);
+  std::printf("floors (mm, 17 joints): 35_12 %.1f / %.1f, 39_12 %.1f / %.1f (subject's / model's skeleton)\n",
+              own.subject_g17, own.model_g17, other.subject_g17, other.model_g17);
+}
+
+}  // namespace
+}  // namespace jgpm

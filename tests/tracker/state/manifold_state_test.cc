@@ -1,0 +1,83 @@
+// The JGPM family's particle state (tracker/state/manifold_state.h) at a start without a known
+// manifold point: the stride scale is drawn from N(1, start_scale_std) clamped to the
+// layers' range (the oracle: the clamped normal's mean and spread, integrated numerically),
+// or uniformly over that range with start_scale_std = 0; the phase is uniform.
+#include "tracker/state/manifold_state.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "io/base/text_reader.h"
+#include "io/gait/gait_dataset.h"
+#include "prior/model/train.h"
+#include "test_support.h"
+#include "tracker/state/random.h"
+
+namespace jgpm {
+namespace {
+
+struct Moments {
+  double mean = 0, std = 0;
+};
+
+Moments Sampled(const ManifoldStateModel& model, int n) {
+  double sum = 0, sum2 = 0;
+  InitialGuess guess;  // no coordinates: spread over the manifold
+  std::vector<double> state(model.Dimension());
+  for (int i = 0; i < n; ++i) {
+    Random random(7, i);
+    model.Sample(guess, &random, state.data());
+    sum += state[2];
+    sum2 += state[2] * state[2];
+  }
+  const double mean = sum / n;
+  return {mean, std::sqrt(sum2 / n - mean * mean)};
+}
+
+// min(max(X, lo), hi) for X ~ N(mu, sigma), by the midpoint rule over +-8 sigma.
+Moments ClampedNormal(double mu, double sigma, double lo, double hi) {
+  const int steps = 200000;
+  double m1 = 0, m2 = 0;
+  for (int k = 0; k < steps; ++k) {
+    const double z = -8 + 16 * (k + 0.5) / steps, w = 16.0 / steps * std::exp(-0.5 * z * z) / std::sqrt(2 * std::numbers::pi);
+    const double x = std::clamp(mu + sigma * z, lo, hi);
+    m1 += w * x;
+    m2 += w * x * x;
+  }
+  return {m1, std::sqrt(m2 - m1 * m1)};
+}
+
+TEST(ManifoldState, AStartDrawsTheStrideScaleNearTheRecordedStrides) {
+  std::vector<TrialId> trials = test::SplitTrials("train");
+  trials.resize(4);
+  const GaitDataset walks = PrepareGaitDataset(test::CmuRoot(), "four", trials, GaitCycleOptions{});
+  TrainingOptions training;
+  training.kind = ModelKind::kMljgpmTorus;
+  training.full.max_iterations = 3;  // the layers' range is what matters here
+  const std::unique_ptr<GaitModel> model = TrainGaitModel(
+      walks, {walks.trials[0].id.name, ReadTextFile(test::CmuRoot() / walks.trials[0].asf, "asf")}, training);
+  const PoseTable table(*model, {});
+  const double lo = table.lo()[2], hi = table.hi()[2];
+  ASSERT_LT(lo, 1);
+  ASSERT_GT(hi, 1);
+  const int n = 40000;
+
+  ManifoldDynamics dynamics;
+  const Moments normal = Sampled(ManifoldStateModel(*model, table, dynamics), n);
+  const Moments expected = ClampedNormal(1, dynamics.start_scale_std, lo, hi);
+  std::printf("scale %.3f +- %.3f, expected %.3f +- %.3f (range %.2f-%.2f)\n", normal.mean, normal.std, expected.mean,
+              expected.std, lo, hi);
+  EXPECT_NEAR(normal.mean, expected.mean, 4 * expected.std / std::sqrt(n));
+  EXPECT_NEAR(normal.std, expected.std, 0.02 * expected.std);
+
+  dynamics.start_scale_std = 0;  // uniform over the range
+  const Moments uniform = Sampled(ManifoldStateModel(*model, table, dynamics), n);
+  const double range = hi - lo;
+  EXPECT_NEAR(uniform.mean, (lo + hi) / 2, 4 * range / std::sqrt(12.0 * n));
+  EXPECT_NEAR(uniform.std, range / std::sqrt(12.0), 0.02 * range / std::sqrt(12.0));
+}
+
+}  // namespace
+}  // namespace jgpm

@@ -1,0 +1,211 @@
+#include "tracker/body/bit_silhouette.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+
+#include "io/base/error.h"
+
+namespace jgpm {
+
+BitMask::BitMask(int width, int height)
+    : width_(width), height_(height), words_((width + 63) / 64), bits_(static_cast<size_t>(words_) * height, 0) {}
+
+BitMask BitMask::FromMat(const cv::Mat& mask, cv::Rect region) {
+  BitMask bits(mask.cols, mask.rows);
+  region &= cv::Rect(0, 0, mask.cols, mask.rows);
+  for (int v = region.y; v < region.y + region.height; ++v) {
+    const uint8_t* m = mask.ptr<uint8_t>(v);
+    uint64_t* out = &bits.bits_[static_cast<size_t>(v) * bits.words_];
+    for (int u = region.x; u < region.x + region.width; ++u) {
+      if (m[u]) out[u >> 6] |= uint64_t{1} << (u & 63);
+    }
+  }
+  bits.first_row_ = region.empty() ? 0 : region.y;
+  bits.last_row_ = region.empty() ? 0 : region.y + region.height;
+  return bits;
+}
+
+void BitMask::SetSpan(int v, int x0, int x1) {
+  if (v < 0 || v >= height_) return;
+  x0 = std::max(x0, 0);
+  x1 = std::min(x1, width_ - 1);
+  if (x1 < x0) return;
+  MarkRows(v, v);
+  SetSpanUnchecked(v, x0, x1);
+}
+
+void BitMask::Clear() {
+  std::fill(bits_.begin() + static_cast<size_t>(first_row_) * words_, bits_.begin() + static_cast<size_t>(last_row_) * words_,
+            0);
+  first_row_ = last_row_ = 0;
+}
+
+int BitMask::Count() const {
+  int n = 0;
+  for (size_t i = static_cast<size_t>(first_row_) * words_; i < static_cast<size_t>(last_row_) * words_; ++i) {
+    n += std::popcount(bits_[i]);
+  }
+  return n;
+}
+
+void BitMask::DilatedRow(int v, uint64_t* out) const {
+  for (int k = 0; k < words_; ++k) {
+    uint64_t x = bits_[static_cast<size_t>(v) * words_ + k];
+    if (v > 0) x |= bits_[static_cast<size_t>(v - 1) * words_ + k];
+    if (v + 1 < height_) x |= bits_[static_cast<size_t>(v + 1) * words_ + k];
+    out[k] = x;
+  }
+  // Sideways: each bit also sets its neighbours, carried across words (bit u is pixel u).
+  uint64_t carry_in = 0;
+  for (int k = 0; k < words_; ++k) {
+    const uint64_t x = out[k];
+    const uint64_t next = k + 1 < words_ ? out[k + 1] : 0;
+    out[k] = x | (x << 1) | carry_in | (x >> 1) | (next << 63);
+    carry_in = x >> 63;
+  }
+  if (width_ % 64) out[words_ - 1] &= ~uint64_t{0} >> (64 - width_ % 64);
+}
+
+void BitMask::DilateInto(BitMask* out) const {
+  *out = BitMask(width_, height_);
+  if (first_row_ == last_row_) return;
+  out->first_row_ = std::max(0, first_row_ - 1);
+  out->last_row_ = std::min(height_, last_row_ + 1);
+  for (int v = out->first_row_; v < out->last_row_; ++v) DilatedRow(v, &out->bits_[static_cast<size_t>(v) * words_]);
+}
+
+cv::Mat BitMask::ToMat() const {
+  cv::Mat mask = cv::Mat::zeros(height_, width_, CV_8UC1);
+  for (int v = first_row_; v < last_row_; ++v) {
+    uint8_t* out = mask.ptr<uint8_t>(v);
+    const uint64_t* r = row(v);
+    for (int u = 0; u < width_; ++u) out[u] = (r[u >> 6] >> (u & 63)) & 1 ? 255 : 0;
+  }
+  return mask;
+}
+
+namespace {
+
+// ceil and floor to int for |x| well inside the int range (the projector culls what is
+// far outside the image): a truncation and a compare, where std::ceil/floor are library
+// calls on jgpm's baseline x86-64 (no SSE4.1 rounding instruction).
+inline int CeilInt(double x) {
+  x = std::clamp(x, -1e9, 1e9);
+  const int i = static_cast<int>(x);
+  return i + (x > i);
+}
+inline int FloorInt(double x) {
+  x = std::clamp(x, -1e9, 1e9);
+  const int i = static_cast<int>(x);
+  return i - (x < i);
+}
+
+}  // namespace
+
+void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* mask,
+                                 std::vector<Eigen::Vector2f>* outline, double outline_step_px) const {
+  JGPM_CHECK(mask->width() == camera().width && mask->height() == camera().height);
+  ImageCapsule c;
+  for (const Capsule& capsule : capsules) {
+    if (!projector_.Project(capsule, &c)) continue;
+    const Eigen::Vector2d d = c.b - c.a;
+    const double length = d.norm();
+    // The hull: both discs, and, unless one disc holds the other, the quadrilateral between
+    // the outer tangents' touching points (u along the axis, n its normal, sin(phi) =
+    // (ra - rb) / |d|: the tangents touch in directions +-n cos(phi) + u sin(phi)).
+    const bool quad = length > std::abs(c.ra - c.rb) + 1e-9;
+    Eigen::Vector2d q[4];
+    Eigen::Vector2d ta = Eigen::Vector2d::Zero(), tb = Eigen::Vector2d::Zero();  // used only with quad
+    if (quad) {
+      const Eigen::Vector2d u = d / length, n(-u.y(), u.x());
+      const double sin_phi = (c.ra - c.rb) / length, cos_phi = std::sqrt(std::max(0.0, 1 - sin_phi * sin_phi));
+      ta = n * cos_phi + u * sin_phi;
+      tb = -n * cos_phi + u * sin_phi;
+      q[0] = c.a + c.ra * ta;
+      q[1] = c.b + c.rb * ta;
+      q[2] = c.b + c.rb * tb;
+      q[3] = c.a + c.ra * tb;
+    }
+    // Rows v0..v1 (clamped to the image; coordinates are bounded by the projector's culling,
+    // so the int conversions are defined). Each non-horizontal quad edge as x = x0 + (v -
+    // y0) * slope over [y0, y1], set up once per capsule (a horizontal edge's ends are
+    // also its neighbours' ends, so it adds nothing).
+    const double top = std::min(c.a.y() - c.ra, c.b.y() - c.rb), bottom = std::max(c.a.y() + c.ra, c.b.y() + c.rb);
+    const int v0 = std::max(0, CeilInt(top)), v1 = std::min(mask->height() - 1, FloorInt(bottom));
+    if (v1 < v0) continue;
+    struct Edge {
+      double y0, y1, x0, slope;
+    } edges[4];
+    int num_edges = 0;
+    if (quad) {
+      for (int e = 0; e < 4; ++e) {
+        const Eigen::Vector2d& p = q[e];
+        const Eigen::Vector2d& s = q[(e + 1) & 3];
+        if (p.y() == s.y()) continue;
+        const Eigen::Vector2d& lo = p.y() < s.y() ? p : s;
+        const Eigen::Vector2d& hi = p.y() < s.y() ? s : p;
+        edges[num_edges++] = {lo.y(), hi.y(), lo.x(), (hi.x() - lo.x()) / (hi.y() - lo.y())};
+      }
+    }
+    const double ra2 = c.ra * c.ra, rb2 = c.rb * c.rb;
+    const int last_column = mask->width() - 1;
+    int drawn_first = mask->height(), drawn_last = -1;
+    for (int v = v0; v <= v1; ++v) {
+      double left = 1e300, right = -1e300;
+      const double da = v - c.a.y(), ha2 = ra2 - da * da;
+      if (ha2 >= 0) {
+        const double h = std::sqrt(ha2);
+        left = c.a.x() - h, right = c.a.x() + h;
+      }
+      const double db = v - c.b.y(), hb2 = rb2 - db * db;
+      if (hb2 >= 0) {
+        const double h = std::sqrt(hb2);
+        left = std::min(left, c.b.x() - h), right = std::max(right, c.b.x() + h);
+      }
+      for (int e = 0; e < num_edges; ++e) {
+        const Edge& edge = edges[e];
+        if (v < edge.y0 || v > edge.y1) continue;
+        const double x = edge.x0 + (v - edge.y0) * edge.slope;
+        left = std::min(left, x), right = std::max(right, x);
+      }
+      if (right < left) continue;
+      const int x0 = std::max(0, CeilInt(left)), x1 = std::min(last_column, FloorInt(right));
+      if (x1 < x0) continue;
+      mask->SetSpanUnchecked(v, x0, x1);
+      drawn_first = std::min(drawn_first, v), drawn_last = v;
+    }
+    if (drawn_last >= 0) mask->MarkRows(drawn_first, drawn_last);
+    if (outline) {
+      auto segment = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+        const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / outline_step_px)));
+        const Eigen::Vector2d delta = (to - from) / steps;
+        for (int k = 0; k < steps; ++k) outline->push_back((from + k * delta).cast<float>());
+      };
+      // Points on the arc of (centre, radius) from unit direction `start`, turning by `span`
+      // radians: rotations of one another, so one sine and cosine per arc.
+      auto arc = [&](const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start, double span) {
+        const int steps = std::max(2, static_cast<int>(std::ceil(std::abs(span) * radius / outline_step_px)));
+        const double cs = std::cos(span / steps), sn = std::sin(span / steps);
+        for (int k = 0; k <= steps; ++k) {
+          outline->push_back((centre + radius * start).cast<float>());
+          start = Eigen::Vector2d(cs * start.x() - sn * start.y(), sn * start.x() + cs * start.y());
+        }
+      };
+      if (quad) {
+        // As tracker/body/silhouette.cc walks it: the far side of b from ta to tb, the back of a
+        // from tb to ta.
+        const double half = std::numbers::pi / 2 - std::asin(std::clamp((c.ra - c.rb) / length, -1.0, 1.0));
+        segment(q[0], q[1]);
+        segment(q[2], q[3]);
+        arc(c.b, c.rb, ta, -2 * half);
+        arc(c.a, c.ra, tb, -(2 * std::numbers::pi - 2 * half));
+      } else {
+        arc(c.ra >= c.rb ? c.a : c.b, std::max(c.ra, c.rb), Eigen::Vector2d(1, 0), 2 * std::numbers::pi);
+      }
+    }
+  }
+}
+
+}  // namespace jgpm

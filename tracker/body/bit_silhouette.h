@@ -1,0 +1,85 @@
+// The particle filter's silhouettes, packed 64 pixels to a word: each capsule's image (the
+// convex hull of its two end circles, as tracker/body/silhouette.h projects them) is filled row
+// by row with the exact span of the hull on that row (a pixel is in when its centre is),
+// so a body costs a few hundred span writes and comparing it with a mask a few hundred
+// AND + popcount word operations, instead of per-pixel fills and counts.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
+
+#include "tracker/body/silhouette.h"
+
+namespace jgpm {
+
+// A binary image of packed rows; remembers which rows were touched so clearing is cheap.
+class BitMask {
+ public:
+  BitMask() = default;
+  BitMask(int width, int height);
+  // From a CV_8U mask (nonzero = set), only the pixels inside `region` (clipped).
+  static BitMask FromMat(const cv::Mat& mask, cv::Rect region);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int words_per_row() const { return words_; }
+  const uint64_t* row(int v) const { return &bits_[static_cast<size_t>(v) * words_]; }
+  // Sets pixels [x0, x1] of row v (clipped to the image; nothing when x1 < x0).
+  void SetSpan(int v, int x0, int x1);
+  // The fast path of SetSpan for a row inside the image and 0 <= x0 <= x1 < width, which
+  // leaves first_row()/last_row() to a MarkRows call for the whole batch of rows.
+  void SetSpanUnchecked(int v, int x0, int x1) {
+    uint64_t* row = &bits_[static_cast<size_t>(v) * words_];
+    const int w0 = x0 >> 6, w1 = x1 >> 6;
+    const uint64_t first = ~uint64_t{0} << (x0 & 63);
+    const uint64_t last = ~uint64_t{0} >> (63 - (x1 & 63));
+    if (w0 == w1) {
+      row[w0] |= first & last;
+      return;
+    }
+    row[w0] |= first;
+    for (int w = w0 + 1; w < w1; ++w) row[w] = ~uint64_t{0};
+    row[w1] |= last;
+  }
+  // Widens [first_row(), last_row()) to hold rows [v0, v1] (0 <= v0 <= v1 < height).
+  void MarkRows(int v0, int v1) {
+    if (first_row_ == last_row_) first_row_ = v0, last_row_ = v1 + 1;
+    else first_row_ = std::min(first_row_, v0), last_row_ = std::max(last_row_, v1 + 1);
+  }
+  // Rows [first, last) that hold set pixels (first == last: none).
+  int first_row() const { return first_row_; }
+  int last_row() const { return last_row_; }
+  void Clear();
+  int Count() const;
+  // This mask grown by one pixel (3 x 3 square) into `out` (same size).
+  void DilateInto(BitMask* out) const;
+  // Row v of this mask grown by one pixel, into `out` (words_per_row() words).
+  void DilatedRow(int v, uint64_t* out) const;
+  cv::Mat ToMat() const;  // CV_8U, 255 where set
+
+ private:
+  int width_ = 0, height_ = 0, words_ = 0;
+  std::vector<uint64_t> bits_;
+  int first_row_ = 0, last_row_ = 0;
+};
+
+class BitSilhouetteRenderer {
+ public:
+  explicit BitSilhouetteRenderer(const Camera& camera) : projector_(camera) {}
+  const Camera& camera() const { return projector_.camera(); }
+
+  // Draws the capsules into `mask` (the camera's size; not cleared first) and appends to
+  // `outline` (may be null) points along each drawn capsule's outline (its two tangent
+  // segments and end arcs), at most `outline_step_px` apart.
+  void Draw(const std::vector<Capsule>& capsules, BitMask* mask, std::vector<Eigen::Vector2f>* outline = nullptr,
+            double outline_step_px = 3) const;
+
+ private:
+  CapsuleProjector projector_;
+};
+
+}  // namespace jgpm

@@ -1,0 +1,83 @@
+// The synthetic clip folder: where each file is, and `ground_truth.json`, written by the
+// renderer and read by the tracker's tests and benchmarks.
+//
+//   ground_truth.json        frame rate, cameras, per frame the time, source frame and
+//                            3-D joint positions (mm), and which frames were dropped
+//   camK.yaml                each camera (calibration/camera.h YAML)
+//   camK.avi                 colour video (MJPG): shaded body over a textured room, noise
+//   background/camK.png      the empty room, as a lab records it before the take
+//   masks/camK/NNNNNN.png    exact silhouettes (ray cast), one per kept frame
+//   observed/camK/NNNNNN.png the silhouettes after the mask degradations (the tracker's
+//                            input when it skips background subtraction)
+//   contact_sheet.png        frames per camera with the skeleton over the silhouette
+// NNNNNN is the clip frame number; dropped frames have no image and no video frame.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calibration/camera.h"
+#include "tracker/clip/clip_degradations.h"
+
+namespace jgpm {
+
+// Files of a clip in `folder`.
+struct ClipPaths {
+  std::filesystem::path folder;
+
+  std::filesystem::path GroundTruth() const { return folder / "ground_truth.json"; }
+  std::filesystem::path CameraYaml(const std::string& camera) const { return folder / (camera + ".yaml"); }
+  std::filesystem::path Video(const std::string& camera) const { return folder / (camera + ".avi"); }
+  std::filesystem::path Background(const std::string& camera) const { return folder / "background" / (camera + ".png"); }
+  std::filesystem::path MaskFolder(const std::string& camera) const { return folder / "masks" / camera; }
+  std::filesystem::path ObservedFolder(const std::string& camera) const { return folder / "observed" / camera; }
+  std::filesystem::path Mask(const std::string& camera, int frame) const;
+  std::filesystem::path ObservedMask(const std::string& camera, int frame) const;
+  std::filesystem::path ContactSheet() const { return folder / "contact_sheet.png"; }
+};
+
+// "000042.png".
+std::string ClipFrameName(int frame);
+
+struct ClipBodyPart {
+  std::string name, from, to;  // from and to: bone names
+  double radius_from_mm = 0, radius_to_mm = 0;
+};
+
+struct ClipFrame {
+  double time_s = 0;
+  int source_frame = 0;  // index into the motion's frames
+  bool dropped = false;
+  int video_frame = -1;  // index in each camK.avi; -1 when dropped
+  // 3 x bones: the end of bone j (the root: its position), world y up, mm; written to
+  // 0.01 mm.
+  Eigen::Matrix3Xd joints_mm;
+};
+
+struct ClipGroundTruth {
+  static constexpr int kVersion = 1;
+  std::string source_asf, source_amc;
+  double source_fps = 0;
+  double fps = 0;
+  int image_width = 0, image_height = 0;
+  uint64_t seed = 0;
+  ClipDegradations degradations;
+  double body_width_scale = 1;
+  std::vector<ClipBodyPart> body_parts;
+  std::vector<std::string> joint_names;  // bone names, joints_mm's columns
+  std::vector<Camera> cameras;
+  std::vector<ClipFrame> frames;
+};
+
+std::string FormatGroundTruth(const ClipGroundTruth& truth);
+// InputError naming `source` and the field for anything malformed: another format or
+// version, missing or mistyped fields, non-finite numbers, an invalid camera, frames whose
+// joints do not match the joint names, video frames out of order.
+ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& source);
+ClipGroundTruth ReadGroundTruth(const std::filesystem::path& path);
+
+}  // namespace jgpm

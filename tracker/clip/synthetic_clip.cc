@@ -1,0 +1,301 @@
+#include "tracker/clip/synthetic_clip.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "io/base/error.h"
+#include "io/base/output_folder.h"
+#include "io/base/text_reader.h"
+#include "io/mocap/kinematics.h"
+#include "tracker/body/ray_caster.h"
+#include "tracker/clip/contact_sheet.h"
+#include "tracker/clip/synthetic_background.h"
+
+namespace jgpm {
+namespace fs = std::filesystem;
+
+bool ClipOptions::Check(std::string* why) const {
+  if (!(fps > 0 && fps <= 1000)) {
+    if (why) *why = "fps: expected a positive rate";
+    return false;
+  }
+  if (max_frames < 0) {
+    if (why) *why = "max frames: expected >= 0";
+    return false;
+  }
+  return rig.Check(why) && degradations.Check(why) && body.Check(why);
+}
+
+std::string ClipSummary::BriefReport() const {
+  char line[256];
+  std::snprintf(line, sizeof line, "%d frames (%d dropped) x %zu camera(s) at %dx%d in %.1f s", frames,
+                dropped, cameras.size(), cameras.empty() ? 0 : cameras[0].width,
+                cameras.empty() ? 0 : cameras[0].height, seconds);
+  return line;
+}
+
+namespace {
+
+// BGR colour of each material.
+cv::Vec3f MaterialColour(BodyMaterial material) {
+  switch (material) {
+    case BodyMaterial::kSkin: return {120, 150, 210};
+    case BodyMaterial::kShirt: return {170, 90, 50};
+    case BodyMaterial::kTrousers: return {60, 55, 60};
+    case BodyMaterial::kShoes: return {35, 35, 40};
+  }
+  return {128, 128, 128};
+}
+
+void WriteImage(const fs::path& path, const cv::Mat& image) {
+  if (!cv::imwrite(path.string(), image)) ThrowInputError(path.string(), "cannot write the image");
+}
+
+// The walker's silhouette with the skeleton over it, cropped about him and enlarged to
+// 160 x 240 (at 320 x 240 he is often under 100 px tall). The crop is an affine map of
+// the image, so the camera of the tile is the same camera with scaled intrinsics.
+cv::Mat SheetTile(const Skeleton& skeleton, const Camera& camera, const cv::Mat& mask,
+                  const Eigen::Matrix3Xd& joints) {
+  constexpr int kWidth = 160, kHeight = 240;
+  cv::Rect box = cv::boundingRect(mask);
+  if (box.empty()) box = cv::Rect(0, 0, mask.cols, mask.rows);
+  double h = std::max(40.0, 1.25 * box.height);
+  h = std::max(h, 1.25 * box.width * kHeight / kWidth);
+  const double scale = kHeight / h;
+  const double x0 = box.x + 0.5 * (box.width - 1) - 0.5 * (kWidth - 1) / scale;
+  const double y0 = box.y + 0.5 * (box.height - 1) - 0.5 * (kHeight - 1) / scale;
+  const cv::Matx23d to_tile(scale, 0, -x0 * scale, 0, scale, -y0 * scale);
+  cv::Mat grey, tile;
+  cv::warpAffine(mask / 255 * 170 + 40, grey, to_tile, cv::Size(kWidth, kHeight), cv::INTER_NEAREST,
+                 cv::BORDER_CONSTANT, cv::Scalar(25));
+  cv::cvtColor(grey, tile, cv::COLOR_GRAY2BGR);
+  Camera zoomed = camera;
+  zoomed.fx *= scale;
+  zoomed.fy *= scale;
+  zoomed.cx = (camera.cx - x0) * scale;
+  zoomed.cy = (camera.cy - y0) * scale;
+  zoomed.width = kWidth;
+  zoomed.height = kHeight;
+  DrawSkeleton(skeleton, zoomed, joints, &tile);
+  return tile;
+}
+
+void CheckCameras(const std::vector<Camera>& cameras) {
+  if (cameras.size() > 8) ThrowInputError("cameras", "at most 8");
+  std::string why;
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const std::string& name = cameras[i].name;  // it names the clip's files
+    if (!cameras[i].Check(&why)) ThrowInputError("camera " + name, why);
+    if (name.empty() || name[0] == '.' ||
+        name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.") != std::string::npos)
+      ThrowInputError("camera '" + name + "'", "a camera name may hold only letters, digits, '_', '-' and '.'");
+    for (size_t k = 0; k < i; ++k)
+      if (cameras[k].name == name) ThrowInputError("camera " + name, "two cameras share this name");
+  }
+}
+
+// The colour frame: the room, clutter blobs behind the walker (`clutter`: 1 + blob index,
+// 0 for none), the Lambert-shaded body.
+void ComposeFrame(const cv::Mat& background, const BodyImage& body, const std::vector<cv::Vec3f>& colours,
+                  const cv::Mat& clutter, const MovingClutter& blobs, cv::Mat* colour) {
+  static const Eigen::Vector3d kLight = Eigen::Vector3d(0.4, 1.0, -0.3).normalized();
+  background.convertTo(*colour, CV_32FC3);
+  for (int v = 0; v < colour->rows; ++v) {
+    cv::Vec3f* out = colour->ptr<cv::Vec3f>(v);
+    const uint8_t* part = body.part.ptr<uint8_t>(v);
+    const uint8_t* blob = clutter.ptr<uint8_t>(v);
+    const cv::Vec3f* normal = body.normal.ptr<cv::Vec3f>(v);
+    for (int u = 0; u < colour->cols; ++u) {
+      if (part[u] != BodyImage::kNoPart) {
+        const double lambert = std::max(0.0, kLight.dot(Eigen::Vector3d(normal[u][0], normal[u][1], normal[u][2])));
+        out[u] = colours[part[u]] * static_cast<float>(0.35 + 0.65 * lambert);
+      } else if (blob[u]) {
+        const cv::Scalar& s = blobs.Colour(blob[u]);
+        out[u] = cv::Vec3f(s[0], s[1], s[2]);
+      }
+    }
+  }
+}
+
+// The ground truth of the clip's frames (joints, times, drops) and what made them.
+ClipGroundTruth GroundTruth(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
+                            const std::vector<Camera>& cameras, const ClipOptions& options, const BodyModel& body,
+                            const std::vector<int>& source_frames, const std::vector<Eigen::Matrix3Xd>& joints,
+                            const std::vector<bool>& dropped) {
+  ClipGroundTruth t;
+  t.source_asf = source.asf;
+  t.source_amc = source.amc;
+  t.source_fps = motion.frames_per_second;
+  t.fps = options.fps;
+  t.image_width = cameras[0].width;
+  t.image_height = cameras[0].height;
+  t.seed = options.seed;
+  t.degradations = options.degradations;
+  t.body_width_scale = options.body.width_scale;
+  for (const BodyPart& p : body.parts()) {
+    t.body_parts.push_back({p.name, skeleton.bones[p.from_joint].name, skeleton.bones[p.to_joint].name,
+                            p.radius_from_mm, p.radius_to_mm});
+  }
+  for (const Bone& bone : skeleton.bones) t.joint_names.push_back(bone.name);
+  t.cameras = cameras;
+  int video_frame = 0;
+  for (size_t k = 0; k < joints.size(); ++k) {
+    ClipFrame f;
+    f.time_s = k / options.fps;
+    f.source_frame = source_frames[k];
+    f.dropped = dropped[k];
+    f.video_frame = dropped[k] ? -1 : video_frame++;
+    f.joints_mm = joints[k];
+    t.frames.push_back(std::move(f));
+  }
+  return t;
+}
+
+}  // namespace
+
+ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
+                       std::vector<Camera> cameras, const ClipOptions& options,
+                       const std::string& out_dir, const std::function<void(int, int)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("render options", why);
+  if (options.fps > motion.frames_per_second)
+    ThrowInputError("render options", "fps " + FormatShortest(options.fps) + " exceeds the motion's " +
+                                          FormatShortest(motion.frames_per_second));
+  if (motion.NumFrames() == 0) ThrowInputError(source.amc, "the motion has no frames");
+  CheckCameras(cameras);
+
+  // Clip frame k shows the source frame nearest to time k / fps.
+  const double step = motion.frames_per_second / options.fps;
+  int frames = static_cast<int>(std::floor((motion.NumFrames() - 1) / step + 1e-9)) + 1;
+  if (options.max_frames > 0) frames = std::min(frames, options.max_frames);
+  const Kinematics kinematics(skeleton);
+  std::vector<int> source_frames(frames);
+  std::vector<Eigen::Matrix3Xd> joints(frames);
+  for (int k = 0; k < frames; ++k) {
+    source_frames[k] = std::min(motion.NumFrames() - 1, static_cast<int>(std::lround(k * step)));
+    kinematics.Compute(motion.Frame(source_frames[k]), &joints[k]);
+  }
+  if (cameras.empty()) cameras = DefaultRig(joints, options.rig);
+  const BodyModel body(skeleton, options.body, source.asf);
+
+  std::mt19937_64 random(options.seed);
+  const ClipDegradations& deg = options.degradations;
+  std::vector<bool> dropped(frames, false);
+  std::bernoulli_distribution drop(deg.drop_rate);
+  for (int k = 1; k < frames; ++k) dropped[k] = drop(random);
+
+  // The clip is made in DIR.partial and moved into place when complete; whatever goes wrong
+  // on the way (disk full, a codec missing), no half clip is left.
+  OutputFolder folder(out_dir);
+  const fs::path& partial = folder.partial();
+  const ClipPaths files{partial};
+
+  // The room's centre: the walk's middle.
+  Eigen::Vector3d room = Eigen::Vector3d::Zero();
+  for (const Eigen::Matrix3Xd& j : joints) room += j.col(0);
+  room /= frames;
+  room.y() = 0;
+
+  ClipSummary summary;
+  summary.frames = frames;
+  summary.dropped = static_cast<int>(std::count(dropped.begin(), dropped.end(), true));
+  summary.cameras = cameras;
+  std::vector<std::vector<cv::Mat>> sheet_tiles(cameras.size());
+  std::vector<int> sheet_frames;
+  {
+    std::vector<int> kept;
+    for (int k = 0; k < frames; ++k) if (!dropped[k]) kept.push_back(k);
+    const int n = std::min<int>(8, kept.size());
+    for (int i = 0; i < n; ++i) sheet_frames.push_back(kept[(kept.size() - 1) * i / std::max(1, n - 1)]);
+  }
+  std::vector<cv::Vec3f> colours;
+  for (const BodyPart& part : body.parts()) colours.push_back(MaterialColour(part.material));
+  std::vector<Capsule> capsules;
+  const int total = frames * static_cast<int>(cameras.size());
+  int done = 0;
+  for (size_t c = 0; c < cameras.size(); ++c) {
+    const Camera& camera = cameras[c];
+    WriteCameraYaml({camera, true, -1}, files.CameraYaml(camera.name).string());
+    fs::create_directories(files.MaskFolder(camera.name));
+    fs::create_directories(files.ObservedFolder(camera.name));
+    const fs::path video_path = files.Video(camera.name);
+    cv::VideoWriter video(video_path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), options.fps,
+                          cv::Size(camera.width, camera.height));
+    if (!video.isOpened())
+      ThrowInputError(video_path.string(), "OpenCV cannot write an MJPG video here");
+    const RayCaster caster(camera);
+    const cv::Mat background = RenderBackground(camera, room);
+    {
+      // The empty room as the camera saw it before anyone walked in, as a lab records it.
+      cv::Mat plate = background.clone(), plate_noise(camera.height, camera.width, CV_32FC3), plate8;
+      cv::RNG plate_rng(options.seed * 104729 + c);
+      plate_rng.fill(plate_noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(deg.sensor_noise));
+      plate += plate_noise;
+      plate.convertTo(plate8, CV_8UC3);
+      fs::create_directories(files.Background(camera.name).parent_path());
+      WriteImage(files.Background(camera.name), plate8);
+    }
+    // Each camera's own random stream, so adding a camera does not change the others.
+    std::mt19937_64 rng(options.seed * 1000003 + c);
+    MovingClutter clutter(deg.clutter_blobs, camera.width, camera.height, &rng);
+    BodyImage image;
+    cv::Mat colour(camera.height, camera.width, CV_32FC3), noise(camera.height, camera.width, CV_32FC3);
+    cv::Mat frame8, clutter_mask(camera.height, camera.width, CV_8UC1);
+    cv::RNG cv_rng(options.seed * 7919 + c);
+    for (int k = 0; k < frames; ++k) {
+      clutter.Step();  // blobs move on through dropped frames
+      if (dropped[k]) {
+        if (progress) progress(++done, total);
+        continue;
+      }
+      body.Place(joints[k], &capsules);
+      caster.Render(capsules, &image);
+      const cv::Mat mask = image.Mask();
+      // Colour: room, clutter, shaded body, then the light and the sensor's noise.
+      clutter.Draw(&clutter_mask);
+      ComposeFrame(background, image, colours, clutter_mask, clutter, &colour);
+      colour *= LightingGain(frames > 1 ? static_cast<double>(k) / (frames - 1) : 0, deg.lighting_gain);
+      if (deg.sensor_noise > 0) {
+        cv_rng.fill(noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(deg.sensor_noise));
+        colour += noise;
+      }
+      colour.convertTo(frame8, CV_8UC3);
+      video.write(frame8);
+      WriteImage(files.Mask(camera.name, k), mask);
+      WriteImage(files.ObservedMask(camera.name, k), DegradeMask(mask, clutter_mask, deg, &rng));
+      if (options.contact_sheet && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
+        sheet_tiles[c].push_back(SheetTile(skeleton, camera, mask, joints[k]));
+      }
+      if (progress) progress(++done, total);
+    }
+    video.release();
+  }
+  if (options.contact_sheet && !sheet_frames.empty()) {
+    std::vector<cv::Mat> tiles;
+    std::vector<std::string> labels;
+    for (size_t c = 0; c < cameras.size(); ++c)
+      for (size_t i = 0; i < sheet_tiles[c].size(); ++i) {
+        tiles.push_back(sheet_tiles[c][i]);
+        labels.push_back(cameras[c].name + " frame " + std::to_string(sheet_frames[i]));
+      }
+    WriteImage(files.ContactSheet(), TileImages(tiles, labels, static_cast<int>(sheet_frames.size())));
+  }
+
+  WriteFileAtomic(files.GroundTruth(), FormatGroundTruth(GroundTruth(skeleton, motion, source, cameras, options, body,
+                                                                     source_frames, joints, dropped)));
+
+  folder.Commit();
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace jgpm

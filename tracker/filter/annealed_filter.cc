@@ -1,0 +1,213 @@
+#include "tracker/filter/annealed_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "io/base/error.h"
+
+namespace jgpm {
+namespace {
+
+double EffectiveFraction(const std::vector<double>& weights) {
+  double sum = 0, squares = 0;
+  for (double w : weights) {
+    sum += w;
+    squares += w * w;
+  }
+  return squares > 0 ? sum * sum / squares / weights.size() : 0.0;
+}
+
+}  // namespace
+
+bool AnnealingOptions::Check(std::string* why) const {
+  const char* problem = nullptr;
+  if (particles < 1 || particles > 1000000) problem = "particles must be in [1, 1000000]";
+  else if (layers < 1 || layers > 100) problem = "layers must be in [1, 100]";
+  else if (!(survival > 0 && survival < 1)) problem = "survival must be in (0, 1)";
+  else if (!(diffusion_shrink > 0 && diffusion_shrink <= 1)) problem = "diffusion_shrink must be in (0, 1]";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
+}
+
+AnnealedFilter::AnnealedFilter(const StateModel& model, const SilhouetteLikelihood& likelihood, const BodyModel& body,
+                               const AnnealingOptions& options, ThreadPool* pool)
+    : model_(model), likelihood_(likelihood), body_(body), options_(options), pool_(pool) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("tracking options", why);
+  for (int w = 0; w < pool->size(); ++w) scratch_.push_back({Eigen::Matrix3Xd(), {}, likelihood.NewWorkspace()});
+}
+
+void AnnealedFilter::Initialise(const InitialGuess& guess, int count, int frame) {
+  particles_.resize(count, model_.Dimension());
+  pool_->For(count, [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      Random random(options_.seed, frame, 1000, i);
+      model_.Sample(guess, &random, particles_.row(i).data());
+    }
+  });
+}
+
+void AnnealedFilter::Shift(int dimension, double offset, int every) {
+  for (int i = every - 1; i < particles_.rows(); i += every) {
+    particles_(i, dimension) += offset;
+    model_.Normalise(particles_.row(i).data());
+  }
+}
+
+void AnnealedFilter::Predict(double dt, int frame) {
+  pool_->For(static_cast<int>(particles_.rows()), [&](int begin, int end, int) {
+    for (int i = begin; i < end; ++i) {
+      Random random(options_.seed, frame, 2000, i);
+      model_.Predict(dt, &random, particles_.row(i).data());
+    }
+  });
+}
+
+void AnnealedFilter::Body(const double* state, Eigen::Matrix3Xd* joints, std::vector<Capsule>* capsules) const {
+  model_.Evaluate(state, joints);
+  body_.Place(*joints, capsules);
+  const double size = state[model_.placement().size];
+  for (Capsule& c : *capsules) {
+    c.radius_from_mm *= size;
+    c.radius_to_mm *= size;
+  }
+}
+
+double AnnealedFilter::Score(const double* state, const std::vector<CameraObservation>& observations,
+                             std::vector<CameraScore>* scores) const {
+  Eigen::Matrix3Xd joints;
+  std::vector<Capsule> capsules;
+  Body(state, &joints, &capsules);
+  SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
+  return likelihood_.Cost(capsules, observations, &workspace, scores);
+}
+
+void AnnealedFilter::Evaluate(std::vector<double>* cost, std::vector<double>* log_prior,
+                              const std::vector<CameraObservation>& observations) {
+  const int n = static_cast<int>(particles_.rows());
+  cost->resize(n);
+  log_prior->resize(n);
+  const double size_index = model_.placement().size;
+  pool_->For(n, [&](int begin, int end, int worker) {
+    Scratch& s = scratch_[worker];
+    for (int i = begin; i < end; ++i) {
+      const double* state = particles_.row(i).data();
+      const double prior = model_.Evaluate(state, &s.joints);
+      (*log_prior)[i] = options_.latent_prior ? prior : 0.0;
+      body_.Place(s.joints, &s.capsules);
+      const double size = state[static_cast<int>(size_index)];
+      for (Capsule& c : s.capsules) {
+        c.radius_from_mm *= size;
+        c.radius_to_mm *= size;
+      }
+      (*cost)[i] = likelihood_.Cost(s.capsules, observations, &s.workspace);
+    }
+  });
+}
+
+std::vector<double> AnnealedFilter::Weights(const std::vector<double>& cost, const std::vector<double>& log_prior,
+                                            double beta) {
+  const int n = static_cast<int>(cost.size());
+  std::vector<double> log_w(n);
+  double top = -1e300;
+  for (int i = 0; i < n; ++i) {
+    log_w[i] = -beta * cost[i] + log_prior[i];
+    if (!std::isfinite(log_w[i])) log_w[i] = -1e300;
+    top = std::max(top, log_w[i]);
+  }
+  std::vector<double> w(n);
+  double sum = 0;
+  for (int i = 0; i < n; ++i) sum += (w[i] = std::exp(log_w[i] - top));
+  for (double& x : w) x /= sum;
+  return w;
+}
+
+double AnnealedFilter::FindBeta(const std::vector<double>& cost, const std::vector<double>& log_prior,
+                                double survival) {
+  if (EffectiveFraction(Weights(cost, log_prior, 0)) <= survival) return 0;
+  double low = 0, high = 1;
+  while (EffectiveFraction(Weights(cost, log_prior, high)) > survival && high < 1e9) {
+    low = high;
+    high *= 4;
+  }
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const double middle = 0.5 * (low + high);
+    (EffectiveFraction(Weights(cost, log_prior, middle)) > survival ? low : high) = middle;
+  }
+  return 0.5 * (low + high);
+}
+
+std::vector<int> AnnealedFilter::Resample(const std::vector<double>& weights, int count, double offset) {
+  std::vector<int> chosen(count);
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  double cumulative = weights.empty() ? 0 : weights[0];
+  int i = 0;
+  for (int k = 0; k < count; ++k) {
+    const double target = (k + offset) / count * total;
+    while (cumulative < target && i + 1 < static_cast<int>(weights.size())) cumulative += weights[++i];
+    chosen[k] = i;
+  }
+  return chosen;
+}
+
+Eigen::VectorXd AnnealedFilter::WeightedMean(const std::vector<double>& weights) const {
+  const int d = model_.Dimension();
+  const int best = static_cast<int>(std::max_element(weights.begin(), weights.end()) - weights.begin());
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(d);
+  for (int k = 0; k < d; ++k) {
+    const double period = model_.Period(k), reference = particles_(best, k);
+    double sum = 0;
+    for (int i = 0; i < particles_.rows(); ++i) {
+      double value = particles_(i, k);
+      if (period > 0) value = reference + std::remainder(value - reference, period);
+      sum += weights[i] * value;
+    }
+    mean[k] = sum;
+  }
+  model_.Normalise(mean.data());
+  return mean;
+}
+
+Eigen::VectorXd AnnealedFilter::Mean() const {
+  return WeightedMean(std::vector<double>(particles_.rows(), 1.0 / std::max<Eigen::Index>(1, particles_.rows())));
+}
+
+AnnealingReport AnnealedFilter::Update(const std::vector<CameraObservation>& observations,
+                                       int frame, int layers) {
+  JGPM_CHECK(particles_.rows() > 0);
+  AnnealingReport report;
+  const int total_layers = layers > 0 ? layers : options_.layers;
+  std::vector<double> cost, log_prior;
+  double diffusion = 1;
+  for (int layer = 0; layer < total_layers; ++layer) {
+    Evaluate(&cost, &log_prior, observations);
+    for (double& p : log_prior) p /= total_layers;  // the prior once per frame, over the layers
+    report.evaluations += static_cast<int>(particles_.rows());
+    const double beta = FindBeta(cost, log_prior, options_.survival);
+    report.betas.push_back(beta);
+    const std::vector<double> weights = Weights(cost, log_prior, beta);
+    const bool last = layer + 1 == total_layers;
+    if (last) {
+      report.estimate = WeightedMean(weights);
+      report.ess = EffectiveFraction(weights);
+      report.best_cost = *std::min_element(cost.begin(), cost.end());
+    }
+    Random offset(options_.seed, frame, 3000 + layer, 0);
+    const std::vector<int> chosen = Resample(weights, options_.particles, offset.Uniform());
+    StateMatrix next(options_.particles, model_.Dimension());
+    for (int k = 0; k < options_.particles; ++k) next.row(k) = particles_.row(chosen[k]);
+    particles_.swap(next);
+    if (last) break;
+    pool_->For(options_.particles, [&](int begin, int end, int) {
+      for (int i = begin; i < end; ++i) {
+        Random random(options_.seed, frame, 4000 + layer, i);
+        model_.Diffuse(diffusion, &random, particles_.row(i).data());
+      }
+    });
+    diffusion *= options_.diffusion_shrink;
+  }
+  return report;
+}
+
+}  // namespace jgpm

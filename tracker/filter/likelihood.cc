@@ -1,0 +1,124 @@
+#include "tracker/filter/likelihood.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "io/base/error.h"
+
+namespace jgpm {
+namespace {
+
+// |S| and |S n M| over rows [first, last) of packed rows; M may be null. Compiled for the
+// POPCNT instruction too (jgpm's baseline x86-64 lacks it; every x86-64 CPU since 2008 has
+// it), picked at load time, as prior/numerics/rbf_row.h does for its vector width.
+__attribute__((target_clones("popcnt", "default"))) void CountBits(const uint64_t* s, const uint64_t* m,
+                                                                   const uint64_t* grown_m, int words, int* model,
+                                                                   int* overlap, int* inside_grown) {
+  int a = 0, b = 0, c = 0;
+  for (int k = 0; k < words; ++k) {
+    a += __builtin_popcountll(s[k]);
+    b += __builtin_popcountll(s[k] & m[k]);
+    c += __builtin_popcountll(s[k] & grown_m[k]);
+  }
+  *model += a;
+  *overlap += b;
+  *inside_grown += c;
+}
+
+// |grow(S) n M| of one row, from grow(S)'s row.
+__attribute__((target_clones("popcnt", "default"))) int CountAnd(const uint64_t* a, const uint64_t* b, int words) {
+  int n = 0;
+  for (int k = 0; k < words; ++k) n += __builtin_popcountll(a[k] & b[k]);
+  return n;
+}
+
+}  // namespace
+
+bool LikelihoodOptions::Check(std::string* why) const {
+  const char* problem = nullptr;
+  if (!(outline_weight >= 0)) problem = "outline_weight must be >= 0";
+  else if (!(truncation_px > 0)) problem = "truncation_px must be > 0";
+  else if (!(outline_step_px > 0)) problem = "outline_step_px must be > 0";
+  else if (!(min_foreground_px > 0)) problem = "min_foreground_px must be > 0";
+  if (problem && why) *why = problem;  // `why` may be null
+  return problem == nullptr;
+}
+
+double CameraScore::Iou() const {
+  const int joined = model_px + observed_px - overlap_px;
+  return joined > 0 ? static_cast<double>(overlap_px) / joined : 0.0;
+}
+
+SilhouetteLikelihood::SilhouetteLikelihood(const std::vector<Camera>& cameras, const LikelihoodOptions& options)
+    : options_(options) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("likelihood options", why);
+  for (const Camera& camera : cameras) renderers_.emplace_back(camera);
+}
+
+SilhouetteLikelihood::Workspace SilhouetteLikelihood::NewWorkspace() const {
+  Workspace w;
+  for (const BitSilhouetteRenderer& r : renderers_) w.canvas.emplace_back(r.camera().width, r.camera().height);
+  w.outline.reserve(2048);
+  return w;
+}
+
+CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::Rect& region) const {
+  return CameraObservation(mask, region, options_.truncation_px, options_.max_hole_px);
+}
+
+double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
+                                  const std::vector<CameraObservation>& observations, Workspace* w,
+                                  std::vector<CameraScore>* scores) const {
+  JGPM_CHECK(observations.size() == renderers_.size());
+  if (scores) scores->assign(renderers_.size(), CameraScore());
+  double total = 0;
+  for (size_t c = 0; c < renderers_.size(); ++c) {
+    const CameraObservation& o = observations[c];
+    BitMask& canvas = w->canvas[c];
+    w->outline.clear();
+    renderers_[c].Draw(capsules, &canvas, &w->outline, options_.outline_step_px);
+    // |S|, |S n O n R|, |S n grow(O n R)| over the rows drawn, |grow(S) n O n R| over them
+    // and a row either side; then the canvas is blank again.
+    int model = 0, overlap = 0, inside = 0, explained = 0;
+    const int words = canvas.words_per_row();
+    const bool observed = !o.empty();
+    if (canvas.last_row() > canvas.first_row()) {
+      if (observed) {
+        const int rows = canvas.last_row() - canvas.first_row();
+        CountBits(canvas.row(canvas.first_row()), o.region_bits().row(canvas.first_row()),
+                  o.region_bits_grown().row(canvas.first_row()), rows * words, &model, &overlap, &inside);
+        w->grown_row.resize(words);
+        for (int v = std::max(0, canvas.first_row() - 1); v < std::min(canvas.height(), canvas.last_row() + 1); ++v) {
+          canvas.DilatedRow(v, w->grown_row.data());
+          explained += CountAnd(w->grown_row.data(), o.region_bits().row(v), words);
+        }
+      } else {
+        model = canvas.Count();
+      }
+    }
+    canvas.Clear();
+    CameraScore score;
+    score.model_px = model;
+    score.overlap_px = overlap;
+    score.observed_px = observed ? o.region_count() : 0;
+    score.outside_px = model - inside;
+    score.unexplained_px = score.observed_px - explained;
+    const double normaliser = std::max<double>(score.observed_px, options_.min_foreground_px);
+    score.area = (score.outside_px + score.unexplained_px) / normaliser;
+    if (!w->outline.empty() && observed) {
+      double sum = 0;
+      for (const Eigen::Vector2f& p : w->outline) sum += o.DistanceToForeground(p.x(), p.y());
+      score.outline = sum / (w->outline.size() * o.truncation_px());
+    } else {
+      score.outline = score.observed_px > 0 ? 1.0 : 0.0;  // nothing drawn: no outline near the person
+    }
+    score.cost = score.area + options_.outline_weight * score.outline;
+    total += score.cost;
+    if (scores) (*scores)[c] = score;
+  }
+  return total;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,86 @@
+// How well a body explains the foreground masks: the tracker's likelihood.
+//
+// Per camera, with S the body's silhouette (tracker/body/bit_silhouette.h), O the observed
+// foreground and R the region where the person is expected (foreground elsewhere, such as
+// clutter, is ignored):
+//   area    ( |S \ grow(O n R)| + |(O n R) \ grow(S)| ) / max(|O n R|, min_foreground_px)
+//           both directions: the body outside the mask AND the mask the body leaves
+//           unexplained (one direction alone lets legs collapse onto each other, or the
+//           body shrink into the mask); grow() adds a pixel all round, so a mask eroded or
+//           dilated by a pixel or two (any segmentation's edge) costs little;
+//   outline mean over points along the body's outline of the distance (px) to the nearest
+//           foreground pixel, truncated and divided by truncation_px: a wide, smooth basin
+//           where the overlap is flat (a limb just beside the mask), robust to holes and
+//           clutter because it saturates;
+//   cost    area + outline_weight * outline.
+// Cameras add their costs (independent views multiply likelihoods); the filter weighs a
+// particle by exp(-beta * cost) with beta set by annealing.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
+
+#include "calibration/camera.h"
+#include "tracker/body/bit_silhouette.h"
+#include "tracker/body/body_model.h"
+#include "tracker/filter/observation.h"
+
+namespace jgpm {
+
+struct LikelihoodOptions {
+  double outline_weight = 0.5;     // of the outline term against the area term
+  double truncation_px = 10;       // outline distances saturate here
+  double outline_step_px = 3;      // outline samples at most this far apart
+  double min_foreground_px = 150;  // the area term's normaliser when little is seen
+  int max_hole_px = 60;            // enclosed holes in a mask smaller than this are filled
+
+  bool Check(std::string* why) const;
+};
+
+// One camera's part of a cost.
+struct CameraScore {
+  int model_px = 0;      // |S|
+  int observed_px = 0;   // |O n R|
+  int overlap_px = 0;    // |S n O n R|
+  int outside_px = 0;    // |S \ grow(O n R)|
+  int unexplained_px = 0;  // |(O n R) \ grow(S)|
+  double area = 0;
+  double outline = 0;
+  double cost = 0;
+  double Iou() const;    // overlap / union (0 when both are empty)
+};
+
+class SilhouetteLikelihood {
+ public:
+  explicit SilhouetteLikelihood(const std::vector<Camera>& cameras, const LikelihoodOptions& options = {});
+
+  // Scratch for one thread: a blank canvas per camera and the outline points.
+  struct Workspace {
+    std::vector<BitMask> canvas;
+    std::vector<Eigen::Vector2f> outline;
+    std::vector<uint64_t> grown_row;
+  };
+  Workspace NewWorkspace() const;
+
+  // A camera's mask prepared for Cost (distances truncated as the options say), with the
+  // region where the person is expected.
+  CameraObservation Observe(const cv::Mat& mask, const cv::Rect& region) const;
+
+  int NumCameras() const { return static_cast<int>(renderers_.size()); }
+  const BitSilhouetteRenderer& renderer(int camera) const { return renderers_[camera]; }
+  const LikelihoodOptions& options() const { return options_; }
+
+  // The summed cost of the placed body against one observation per camera; `scores` (may
+  // be null) receives each camera's part. Thread-safe with one workspace per thread.
+  double Cost(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,
+              Workspace* workspace, std::vector<CameraScore>* scores = nullptr) const;
+
+ private:
+  std::vector<BitSilhouetteRenderer> renderers_;
+  LikelihoodOptions options_;
+};
+
+}  // namespace jgpm

@@ -1,0 +1,362 @@
+#include "tracker/filter/tracker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "io/base/enum_name.h"
+#include "io/base/error.h"
+#include "tracker/filter/person_locator.h"
+#include "tracker/state/joint_space_state.h"
+#include "tracker/state/latent_state.h"
+#include "tracker/state/manifold_state.h"
+
+namespace jgpm {
+namespace {
+
+
+// The head's top above its bone end: the body model's head radius there (mm).
+constexpr double kHeadTopMm = 88;
+
+cv::Rect Grow(const cv::Rect& box, double margin, int width, int height) {
+  if (box.empty()) return box;
+  const int dx = static_cast<int>(margin * box.width) + 8, dy = static_cast<int>(margin * box.height) + 8;
+  return cv::Rect(box.x - dx, box.y - dy, box.width + 2 * dx, box.height + 2 * dy) & cv::Rect(0, 0, width, height);
+}
+
+}  // namespace
+
+std::string_view TrackStatusName(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::kTracked: return "tracked";
+    case TrackStatus::kPredicted: return "predicted";
+    case TrackStatus::kLost: return "lost";
+  }
+  return "?";
+}
+
+bool TrackerOptions::Check(std::string* why) const {
+  const char* problem = nullptr;
+  if (threads < 1 || threads > 256) problem = "threads must be in [1, 256]";
+  else if (start_frames < 1 || start_frames > 1000) problem = "start_frames must be in [1, 1000]";
+  else if (start_particle_factor < 1 || start_particle_factor > 100) problem = "start_particle_factor must be in [1, 100]";
+  else if (start_layers < 1 || start_layers > 100) problem = "start_layers must be in [1, 100]";
+  else if (!(lost_iou >= 0 && lost_iou < 1)) problem = "lost_iou must be in [0, 1)";
+  else if (lost_frames < 1) problem = "lost_frames must be >= 1";
+  else if (!(region_margin >= 0 && region_margin <= 10)) problem = "region_margin must be in [0, 10]";
+  else if (!(mirror_margin >= 0)) problem = "mirror_margin must be >= 0";
+  else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
+  else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
+  else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
+  if (problem) {
+    if (why) *why = problem;  // `why` may be null
+    return false;
+  }
+  return annealing.Check(why) && likelihood.Check(why) && table.Check(why);
+}
+
+double TrackedFrame::MeanIou() const {
+  if (cameras.empty()) return 0;
+  double sum = 0;
+  for (const CameraScore& c : cameras) sum += c.Iou();
+  return sum / cameras.size();
+}
+
+Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options)
+    : model_(model),
+      cameras_(cameras),
+      options_(options),
+      pool_(options.threads),
+      body_(model.skeleton(), {}, "the model's skeleton"),
+      likelihood_(cameras, options.likelihood),
+      placer_(model.skeleton()) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("tracking options", why);
+  if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
+  if (options.space == StateSpace::kJointSpace) {
+    state_model_ = std::make_unique<JointSpaceStateModel>(model, options.known_size);
+  } else {
+    PoseTableOptions table = options.table;
+    table.threads = options.threads;
+    table_ = std::make_unique<PoseTable>(model, table);
+    if (model.HasManifold()) {
+      ManifoldDynamics dynamics;
+      if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;
+      state_model_ = std::make_unique<ManifoldStateModel>(model, *table_, dynamics);
+    } else {
+      LatentDynamics dynamics;
+      if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;
+      state_model_ = std::make_unique<LatentStateModel>(model, *table_, dynamics);
+    }
+  }
+  legs_by_phase_ = model.HasManifold() && options.space == StateSpace::kModel;
+  filter_ = std::make_unique<AnnealedFilter>(*state_model_, likelihood_, body_, options.annealing, &pool_);
+  if (options.refinement.enabled && options.space == StateSpace::kModel) {
+    RefinementOptions refinement = options.refinement;
+    refinement.refine_size = refinement.refine_size && !options.known_size;
+    refiner_ = std::make_unique<PoseRefiner>(model, likelihood_, body_, refinement, &pool_);
+  }
+  // The model's height at size 1, over poses spread by the prior.
+  const int head = model.skeleton().FindBone("head");
+  Eigen::VectorXd state(state_model_->Dimension());
+  Eigen::Matrix3Xd joints;
+  InitialGuess origin;
+  origin.floor_std_mm = 0;
+  origin.size_std = 0;
+  double sum = 0;
+  for (int i = 0; i < 64; ++i) {
+    Random random(12345, i);
+    state_model_->Sample(origin, &random, state.data());
+    state_model_->Evaluate(state.data(), &joints);
+    sum += (head >= 0 ? joints(1, head) : joints.row(1).maxCoeff()) + kHeadTopMm;
+  }
+  model_height_mm_ = sum / 64;
+}
+
+Tracker::~Tracker() = default;
+
+bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const {
+  std::vector<PersonSighting> sightings;
+  std::vector<double> times;
+  for (const Frame& f : frames) {
+    if (f.dropped) continue;
+    sightings.push_back(LocatePerson(cameras_, f.masks));
+    times.push_back(f.time_s - frames.front().time_s);
+  }
+  // Where the person was at the first frame: a straight walk fitted through the places
+  // found (least squares in time), so a first frame where nobody was found still starts
+  // in the right place.
+  std::vector<double> heights;
+  double n = 0, st = 0, stt = 0;
+  Eigen::Vector2d sp = Eigen::Vector2d::Zero(), stp = Eigen::Vector2d::Zero();
+  for (size_t i = 0; i < sightings.size(); ++i) {
+    const PersonSighting& s = sightings[i];
+    if (!s.found) continue;
+    if (s.height_mm > 0) heights.push_back(s.height_mm);
+    n += 1, st += times[i], stt += times[i] * times[i];
+    sp += s.floor_mm, stp += times[i] * s.floor_mm;
+  }
+  if (n == 0) return false;
+  const double det = n * stt - st * st;
+  const Eigen::Vector2d start = det > 1e-9 ? Eigen::Vector2d((stt * sp - st * stp) / det) : Eigen::Vector2d(sp / n);
+  const Eigen::Vector2d velocity = det > 1e-9 ? Eigen::Vector2d((n * stp - st * sp) / det) : Eigen::Vector2d::Zero();
+  guess->floor_mm = start;
+  guess->floor_std_mm = 120;
+  if (options_.known_size) {
+    guess->size = 1, guess->size_std = 0;
+  } else if (!heights.empty()) {
+    std::sort(heights.begin(), heights.end());
+    guess->size = std::clamp(heights[heights.size() / 2] / model_height_mm_, 0.8, 1.25);
+    guess->size_std = 0.04;
+  }
+  // A walker faces where they go: the fitted walk gives the heading and the speed, when
+  // it went far enough in the frames looked at to be told from noise.
+  const double travelled = velocity.norm() * (times.empty() ? 0 : times.back());
+  if (travelled > 60) {
+    guess->heading_rad = std::atan2(velocity.x(), velocity.y());
+    guess->heading_std_rad = 25 * std::numbers::pi / 180;
+    guess->speed_mm_s = velocity.norm();
+  } else {
+    guess->heading_std_rad = std::numbers::pi;  // standing or unseen: any heading
+  }
+  return true;
+}
+
+void Tracker::StartAt(const InitialGuess& guess) {
+  if (refiner_) refiner_->Reset();
+  filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, 0);
+  started_ = true;
+  fresh_ = true;
+  // A start that knows the pose (--init truth) knows which leg is forward.
+  frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
+  bad_frames_ = 0;
+  start_boxes_.clear();
+}
+
+bool Tracker::StartFromFrames(const std::vector<Frame>& frames) {
+  InitialGuess guess;
+  if (!Guess(frames, &guess)) return false;
+  StartAt(guess);
+  // Where to look at the start: the first frame's blobs.
+  for (const Frame& f : frames) {
+    if (f.dropped) continue;
+    start_boxes_ = LocatePerson(cameras_, f.masks).boxes;
+    break;
+  }
+  return true;
+}
+
+std::vector<cv::Rect> Tracker::Regions(const std::vector<Frame>*) const {
+  std::vector<cv::Rect> regions(cameras_.size());
+  if (fresh_ && !start_boxes_.empty()) {
+    for (size_t c = 0; c < cameras_.size(); ++c) {
+      // A camera that did not see the person at the start looks everywhere.
+      regions[c] = start_boxes_[c].empty()
+                       ? cv::Rect(0, 0, cameras_[c].width, cameras_[c].height)
+                       : Grow(start_boxes_[c], 2 * options_.region_margin, cameras_[c].width, cameras_[c].height);
+    }
+    return regions;
+  }
+  // The union of where a spread of the particles would be seen.
+  const StateMatrix& particles = filter_->particles();
+  const int n = static_cast<int>(particles.rows());
+  const int samples = std::min(n, 24);
+  std::vector<double> x0(cameras_.size(), 1e300), y0(cameras_.size(), 1e300), x1(cameras_.size(), -1e300),
+      y1(cameras_.size(), -1e300);
+  Eigen::Matrix3Xd joints;
+  for (int k = 0; k < samples; ++k) {
+    state_model_->Evaluate(particles.row(static_cast<Eigen::Index>(k) * n / samples).data(), &joints);
+    for (size_t c = 0; c < cameras_.size(); ++c) {
+      for (int j = 0; j < joints.cols(); ++j) {
+        Eigen::Vector2d p;
+        if (!cameras_[c].Project(joints.col(j), &p)) continue;
+        x0[c] = std::min(x0[c], p.x());
+        y0[c] = std::min(y0[c], p.y());
+        x1[c] = std::max(x1[c], p.x());
+        y1[c] = std::max(y1[c], p.y());
+      }
+    }
+  }
+  for (size_t c = 0; c < cameras_.size(); ++c) {
+    if (x1[c] < x0[c]) continue;
+    const double limit = 4.0 * (cameras_[c].width + cameras_[c].height);
+    const auto clamp = [&](double v) { return static_cast<int>(std::clamp(v, -limit, limit)); };
+    const cv::Rect box(cv::Point(clamp(std::floor(x0[c])), clamp(std::floor(y0[c]))),
+                       cv::Point(clamp(std::ceil(x1[c])) + 1, clamp(std::ceil(y1[c])) + 1));
+    regions[c] = Grow(box, options_.region_margin, cameras_[c].width, cameras_[c].height);
+  }
+  return regions;
+}
+
+TrackedFrame Tracker::Step(const Frame& frame) {
+  const auto start = std::chrono::steady_clock::now();
+  TrackedFrame out;
+  out.index = frame.index;
+  out.time_s = frame.time_s;
+  auto finish = [&](TrackedFrame* f) {
+    f->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    last_time_s_ = frame.time_s;
+  };
+  if (!started_ && !frame.dropped) StartFromFrames({frame});
+  if (!started_) {
+    out.status = TrackStatus::kLost;
+    finish(&out);
+    return out;
+  }
+  const double dt = fresh_ ? 0.0 : frame.time_s - last_time_s_;
+  if (!fresh_) filter_->Predict(dt, frame.index);
+  if (legs_by_phase_ && !fresh_ && !frame.dropped && options_.mirror_every > 0 &&
+      frames_since_start_ < options_.mirror_frames)
+    filter_->Shift(0, 0.5, options_.mirror_every);
+  ++frames_since_start_;
+  if (frame.dropped) {
+    out.status = TrackStatus::kPredicted;
+    out.state = filter_->Mean();
+    ExactPose(out.state, &out.pose_deg, &out.joints_mm);
+    out.prior_joints_mm = out.joints_mm;
+    out.size = out.state[state_model_->placement().size];
+    out.heading_rad = out.state[state_model_->placement().heading];
+    finish(&out);
+    return out;
+  }
+  const std::vector<cv::Rect> regions = Regions(nullptr);
+  // Each camera's mask prepared on its own thread (hole filling and the distance transform
+  // take about a millisecond per camera).
+  std::vector<CameraObservation> observations(frame.masks.size());
+  pool_.For(static_cast<int>(frame.masks.size()), [&](int begin, int end, int) {
+    for (int c = begin; c < end; ++c) observations[c] = likelihood_.Observe(frame.masks[c], regions[c]);
+  });
+  const AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
+  if (fresh_) {
+    mirror_evidence_ = 0;
+    mirror_streak_ = 0;
+  }
+  fresh_ = false;
+  out.state = report.estimate;
+  out.ess = report.ess;
+  out.evaluations = report.evaluations;
+  if (legs_by_phase_) {
+    // Which leg is forward: the estimate against itself half a cycle on.
+    Eigen::VectorXd mirror = out.state;
+    mirror[0] += 0.5;
+    state_model_->Normalise(mirror.data());
+    const double difference = filter_->Score(out.state.data(), observations, nullptr) -
+                              filter_->Score(mirror.data(), observations, nullptr);
+    mirror_evidence_ = 0.8 * mirror_evidence_ + difference;
+    mirror_streak_ = difference > 0 ? mirror_streak_ + 1 : 0;
+    out.evaluations += 2;
+    if (mirror_evidence_ > options_.mirror_margin && mirror_streak_ >= options_.mirror_streak) {
+      filter_->Shift(0, 0.5);
+      out.state = mirror;
+      mirror_evidence_ = 0;
+      mirror_streak_ = 0;
+    }
+  }
+  ExactPose(out.state, &out.pose_deg, &out.joints_mm);
+  out.prior_joints_mm = out.joints_mm;
+  const PlacementIndex p = state_model_->placement();
+  out.size = out.state[p.size];
+  out.heading_rad = out.state[p.heading];
+  if (refiner_) {
+    const Eigen::Vector3d latent = model_.HasManifold()
+                                       ? model_.ManifoldToLatent({out.state[0], out.state[1], out.state[2]})
+                                       : Eigen::Vector3d(out.state[0], out.state[1], out.state[2]);
+    const PoseRefiner::Result r = refiner_->Refine(out.pose_deg, latent, out.state[p.x], out.state[p.z],
+                                                   out.state[p.heading], out.state[p.size], observations, frame.index);
+    out.pose_deg = r.pose_deg;
+    out.size = r.size;
+    out.heading_rad = r.heading_rad;
+    out.evaluations += r.evaluations;
+    placer_.Place(out.pose_deg.data(), r.x_mm, r.z_mm, r.heading_rad, r.size, &out.joints_mm);
+  }
+  {
+    std::vector<Capsule> capsules;
+    body_.Place(out.joints_mm, &capsules);
+    for (Capsule& c : capsules) c.radius_from_mm *= out.size, c.radius_to_mm *= out.size;
+    SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
+    likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
+  }
+  bool anyone = false;
+  for (const CameraObservation& o : observations) anyone = anyone || o.Foreground() > 0;
+  bad_frames_ = out.MeanIou() < options_.lost_iou ? bad_frames_ + 1 : 0;
+  if (!anyone || bad_frames_ >= options_.lost_frames) {
+    out.status = TrackStatus::kLost;
+    // Start again from the masks as soon as someone is seen.
+    started_ = false;
+    if (anyone) StartFromFrames({frame});
+  } else {
+    out.status = TrackStatus::kTracked;
+  }
+  finish(&out);
+  return out;
+}
+
+void Tracker::ExactPose(const Eigen::VectorXd& state, Eigen::VectorXd* pose_deg, Eigen::Matrix3Xd* joints_mm) const {
+  *pose_deg = state_model_->Pose(state.data());
+  const PlacementIndex p = state_model_->placement();
+  placer_.Place(pose_deg->data(), state[p.x], state[p.z], state[p.heading], state[p.size], joints_mm);
+}
+
+std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
+                                      const std::function<void(const Frame&, TrackedFrame&)>& on_frame,
+                                      const std::function<bool()>& stop) {
+  const auto stopped = [&stop] { return stop && stop(); };
+  std::vector<Frame> first;
+  Frame frame;
+  while (static_cast<int>(first.size()) < tracker->options().start_frames && !stopped() && source->Next(&frame)) {
+    first.push_back(frame);
+  }
+  std::vector<TrackedFrame> tracked;
+  if (first.empty()) return tracked;
+  tracker->StartFromFrames(first);
+  auto step = [&](const Frame& f) {
+    tracked.push_back(tracker->Step(f));
+    if (on_frame) on_frame(f, tracked.back());
+  };
+  for (const Frame& f : first) step(f);
+  while (!stopped() && source->Next(&frame)) step(frame);
+  return tracked;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,118 @@
+#include "tracker/frames/foreground.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "io/base/error.h"
+
+namespace jgpm {
+
+bool ForegroundOptions::Check(std::string* why) const {
+  auto fail = [why](const char* what) { return *why = what, false; };
+  if (learning_frames < 1 || learning_frames > 10000) return fail("learning frames must be 1-10000");
+  if (!(learning_rate >= 0 && learning_rate <= 1)) return fail("the learning rate must be in [0, 1]");
+  if (!(threshold > 0 && std::isfinite(threshold))) return fail("the threshold must be positive");
+  if (!(open_px >= 0 && close_px >= 0 && open_px < 50 && close_px < 50)) return fail("clean-up radii must be 0-50 px");
+  if (!(min_area >= 0 && min_area < 1)) return fail("the speck size must be a fraction of the image in [0, 1)");
+  return true;
+}
+
+ForegroundExtractor::ForegroundExtractor(const ForegroundOptions& options, int width, int height)
+    : options_(options), width_(width), height_(height) {
+  std::string why;
+  if (!options.Check(&why)) ThrowInputError("foreground options", why);
+}
+
+void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images) {
+  JGPM_CHECK(!images.empty());
+  const int n = static_cast<int>(images.size());
+  cv::Mat median(height_, width_, CV_8UC3);
+  std::vector<uint8_t> values(n);
+  const size_t bytes = static_cast<size_t>(width_) * height_ * 3;
+  for (const cv::Mat& image : images) JGPM_CHECK(image.type() == CV_8UC3 && image.isContinuous() && image.total() * 3 == bytes);
+  for (size_t i = 0; i < bytes; ++i) {
+    for (int k = 0; k < n; ++k) values[k] = images[k].data[i];
+    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
+    median.data[i] = values[n / 2];
+  }
+  SetBackground(median);
+}
+
+void ForegroundExtractor::SetBackground(const cv::Mat& background) {
+  JGPM_CHECK(background.type() == CV_8UC3 && background.cols == width_ && background.rows == height_);
+  background_ = background.clone();
+  cv::cvtColor(background_, background_grey_, cv::COLOR_BGR2GRAY);
+  if (options_.method == ForegroundMethod::kMog2) {
+    auto mog2 = cv::createBackgroundSubtractorMOG2(500, options_.threshold, options_.shadows);
+    // OpenCV's 0.9 makes anything that covered a pixel for 1-0.9^(1/rate) images (53 at
+    // 0.002) part of the background: a person walking straight at a camera would fade.
+    // At 0.6 the person must outweigh the scene first (about 460 images).
+    mog2->setBackgroundRatio(0.6);
+    subtractor_ = mog2;
+    cv::Mat ignored;
+    subtractor_->apply(background_, ignored, 1.0);  // the model is this image
+  } else {
+    auto knn = cv::createBackgroundSubtractorKNN(500, 25 * options_.threshold, options_.shadows);
+    cv::Mat ignored;
+    // KNN keeps samples of each pixel and counts one as the background only once it was
+    // seen as such: it needs the scene shown over and over before it sees the person.
+    for (int k = 0; k < 60; ++k) knn->apply(background_, ignored, -1);
+    subtractor_ = knn;
+  }
+}
+
+double ForegroundExtractor::Gain(const cv::Mat& bgr) const {
+  // Median brightness ratio over a grid of pixels that are not near black.
+  std::vector<float> ratios;
+  ratios.reserve(static_cast<size_t>(width_ / 4 + 1) * (height_ / 4 + 1));
+  cv::Mat grey;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  for (int v = 0; v < height_; v += 4) {
+    const uint8_t* now = grey.ptr<uint8_t>(v);
+    const uint8_t* before = background_grey_.ptr<uint8_t>(v);
+    for (int u = 0; u < width_; u += 4)
+      if (before[u] >= 16 && before[u] <= 240) ratios.push_back(static_cast<float>(now[u]) / before[u]);
+  }
+  if (ratios.size() < 16) return 1;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  const double gain = ratios[ratios.size() / 2];
+  return std::clamp(gain, 0.25, 4.0);
+}
+
+cv::Mat ForegroundExtractor::Apply(const cv::Mat& bgr) {
+  JGPM_CHECK(subtractor_ && bgr.type() == CV_8UC3 && bgr.cols == width_ && bgr.rows == height_);
+  gain_ = options_.gain_compensation ? Gain(bgr) : 1.0;
+  cv::Mat image;  // a new image: the caller's stays as it was (overlays show it)
+  if (std::abs(gain_ - 1) > 0.01) {
+    bgr.convertTo(image, -1, 1 / gain_);
+  } else {
+    image = bgr;
+  }
+  cv::Mat raw;
+  subtractor_->apply(image, raw, options_.learning_rate);
+  cv::Mat mask = raw == 255;  // shadows are 127
+  const double scale = height_ / 240.0;
+  for (const auto& [radius, op] : {std::pair{options_.open_px, cv::MORPH_OPEN}, {options_.close_px, cv::MORPH_CLOSE}}) {
+    const int r = static_cast<int>(std::lround(radius * scale));
+    if (r < 1) continue;
+    cv::morphologyEx(mask, mask, op, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
+  }
+  RemoveSpecks(&mask, options_.min_area);
+  return mask;
+}
+
+void RemoveSpecks(cv::Mat* mask, double min_area) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(*mask, labels, stats, centroids, 8, CV_32S);
+  std::vector<uint8_t> keep(n, 0);
+  for (int k = 1; k < n; ++k) keep[k] = stats.at<int>(k, cv::CC_STAT_AREA) >= min_area * mask->total() ? 255 : 0;
+  for (int v = 0; v < mask->rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    uint8_t* m = mask->ptr<uint8_t>(v);
+    for (int u = 0; u < mask->cols; ++u) m[u] = keep[l[u]];
+  }
+}
+
+}  // namespace jgpm

@@ -1,0 +1,42 @@
+// Where the tracker's frames come from: one interface for a synthetic clip folder
+// (tracker/frames/clip_source.h) and for video files, image folders and live V4L2 cameras
+// (tracker/frames/video_frame_source.h); tracker/frames/frame_source_factory.h makes the one asked for.
+// A source knows its cameras and hands out frames in time order; each frame carries every
+// camera's foreground mask, and the colour image when the source has one (for overlays
+// and background subtraction).
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "calibration/camera.h"
+
+namespace jgpm {
+
+// One moment seen by every camera of a source.
+struct Frame {
+  int index = 0;         // frame number in the source, from 0
+  double time_s = 0;     // since the source's first frame
+  bool dropped = false;  // nothing was captured: masks and images are empty
+  double latency_ms = 0;  // live: from capture until the masks were ready...
+  std::chrono::steady_clock::time_point ready;  // ...which was then
+  std::vector<cv::Mat> masks;   // per camera: CV_8UC1, 255 = foreground
+  std::vector<cv::Mat> images;  // per camera: BGR, or empty when the source has none
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  virtual const std::vector<Camera>& cameras() const = 0;
+  virtual double fps() const = 0;
+  // Frames in the source, dropped ones included; -1 when unknown (live sources).
+  virtual int NumFrames() const = 0;
+  // The next frame (masks and, when `with_images` was asked of the source, images); false
+  // at the end. InputError naming the file or device when a frame cannot be read.
+  virtual bool Next(Frame* frame) = 0;
+};
+
+}  // namespace jgpm

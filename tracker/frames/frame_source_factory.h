@@ -1,0 +1,53 @@
+// The frame source a `jgpm track` command line asks for, made in one place: a synthetic
+// clip (its masks, or its videos through background subtraction), video files, an image
+// folder, or a live V4L2 camera, each camera with its calibration.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "calibration/camera.h"
+#include "calibration/camera_guess.h"
+#include "tracker/frames/foreground.h"
+#include "tracker/frames/frame_source.h"
+
+namespace jgpm {
+
+struct FrameSourceSpec {
+  // Exactly one kind of source.
+  std::string clip;                 // a synthetic clip folder
+  std::vector<std::string> videos;  // video files, one per camera
+  std::string images;               // an image folder...
+  double images_fps = 0;            // ...and its frame rate
+  std::vector<std::string> devices;  // live cameras, /dev/videoN, or fake:VIDEO (a video
+                                     // played in real time through the V4L2 code and a
+                                     // software camera, io/video/fake_v4l2_device.h: for tests)
+  // Cameras: of a clip, the indices to use (empty: all); otherwise one YAML per source,
+  // or a guess.
+  std::vector<int> clip_cameras;
+  std::vector<std::string> camera_yamls;
+  bool camera_guess = false;
+  CameraGuess guess;
+  // Masks: a clip's exact masks instead of its observed ones; or, when `foreground` is
+  // set for a clip, computed from its videos as for any video.
+  bool exact_masks = false;
+  bool clip_foreground = false;
+  ForegroundOptions foreground;
+  std::vector<std::string> backgrounds;
+  // Live camera.
+  int device_width = 640, device_height = 480;
+  double device_fps = 30;
+  std::string device_format = "auto";  // auto, yuyv, mjpg
+  int max_frames = 0;
+  // Told what a live camera gave and what the start needs (the command prints it).
+  std::function<void(const std::string&)> note;
+};
+
+// InputError naming the option, file or device for anything unusable: no source or two,
+// a video without a camera YAML (the message says how to make one), cameras that do not
+// match their sources.
+std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec);
+
+}  // namespace jgpm

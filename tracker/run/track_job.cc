@@ -1,0 +1,278 @@
+#include "tracker/run/track_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "io/base/error.h"
+#include "io/base/json_file.h"
+#include "io/base/output_batch.h"
+#include "io/base/output_folder.h"
+#include "io/base/png_file.h"
+#include "io/base/text_reader.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/bvh.h"
+#include "io/mocap/bvh_conversion.h"
+#include "prior/model/inference.h"
+#include "prior/model/model_file.h"
+#include "tracker/frames/clip_source.h"
+#include "tracker/frames/video_frame_source.h"
+
+namespace jgpm {
+namespace fs = std::filesystem;
+namespace {
+
+
+int BoneIndex(const std::vector<std::string>& names, const std::string& name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+// Thigh plus shin, mm, of bone ends named by `names`.
+double LegLength(const Eigen::Matrix3Xd& joints, const std::vector<std::string>& names) {
+  const int hip = BoneIndex(names, "lhipjoint"), knee = BoneIndex(names, "lfemur"), ankle = BoneIndex(names, "ltibia");
+  if (hip < 0 || knee < 0 || ankle < 0) return 0;
+  return (joints.col(knee) - joints.col(hip)).norm() + (joints.col(ankle) - joints.col(knee)).norm();
+}
+
+}  // namespace
+
+InitialGuess TruthGuess(const ClipGroundTruth& truth, const GaitModel& model, const StateModel& state_model) {
+  InitialGuess guess;
+  const Eigen::Matrix3Xd& joints = truth.frames.at(0).joints_mm;
+  const int root = BoneIndex(truth.joint_names, "root");
+  const int left = BoneIndex(truth.joint_names, "lhipjoint"), right = BoneIndex(truth.joint_names, "rhipjoint");
+  if (root < 0 || left < 0 || right < 0) ThrowInputError("ground truth", "has no root, lhipjoint and rhipjoint to start from");
+  guess.floor_mm = Eigen::Vector2d(joints(0, root), joints(2, root));
+  guess.floor_std_mm = 20;
+  // Facing: the left hip's side crossed with up.
+  const Eigen::Vector3d to_left = joints.col(left) - joints.col(right);
+  const Eigen::Vector3d forward = to_left.cross(Eigen::Vector3d::UnitY());
+  guess.heading_rad = std::atan2(forward.x(), forward.z());
+  guess.heading_std_rad = 3 * std::numbers::pi / 180;
+  // Size: the truth's leg against the model's.
+  const std::vector<std::string> model_bones = model.skeleton().BoneNames();
+  Eigen::Matrix3Xd rest;
+  const Eigen::VectorXd zero_pose = Eigen::VectorXd::Zero(model.NumChannels());
+  PosePlacer(model.skeleton()).Place(zero_pose.data(), 0, 0, 0, 1, &rest);
+  const double model_leg = LegLength(rest, model_bones), true_leg = LegLength(joints, truth.joint_names);
+  if (model_leg > 0 && true_leg > 0) guess.size = true_leg / model_leg;
+  guess.size_std = 0.01;
+  // The pose: the source trial's frame as gait channels, on the model.
+  std::error_code ec;
+  if (!fs::exists(truth.source_asf, ec) || !fs::exists(truth.source_amc, ec)) return guess;
+  const Skeleton skeleton = ReadAsf(truth.source_asf);
+  const Motion motion = ReadAmc(truth.source_amc, skeleton);
+  const GaitPoseLayout layout(skeleton, truth.source_asf);
+  if (layout.channel_names() != model.data().set.channel_names) return guess;
+  const double* frame = motion.Frame(std::min(truth.frames[0].source_frame, motion.NumFrames() - 1));
+  PoseObservations observed;
+  observed.poses_deg.resize(1, layout.NumChannels());
+  layout.FromFrame(frame, HeadingOf(layout.RootRotation(frame)), observed.poses_deg.data());
+  if (state_model.Name() == "joint-space") {
+    guess.coordinates = observed.poses_deg.row(0).transpose();
+    return guess;
+  }
+  const Eigen::Vector3d x = InferLatentSequence(model, observed).latent.row(0).transpose();
+  if (state_model.Name() == "manifold") {
+    const ManifoldPoint m = model.LatentToManifold(x);
+    guess.coordinates = Eigen::Vector3d(m.phase, m.gait, m.scale);
+  } else {
+    guess.coordinates = x;
+  }
+  return guess;
+}
+
+std::unique_ptr<GaitModel> ModelOnSkeleton(const GaitModel& model, const std::string& asf) {
+  GaitModelData data = model.data();
+  data.skeleton_asf = ReadTextFile(asf, "the subject's skeleton (ASF)");
+  ParseAsf(data.skeleton_asf, asf);  // errors name the file itself
+  data.skeleton_trial = fs::path(asf).stem().string();
+  // Create parses the ASF and checks that the model's channels fit its bones and dofs.
+  return GaitModel::Create(std::move(data), asf);
+}
+
+namespace {
+
+// Each camera's overlay video, written frame by frame.
+class OverlayWriter {
+ public:
+  OverlayWriter(const fs::path& dir, const TrackRun& run, const Tracker& tracker, const Skeleton& skeleton)
+      : run_(run), tracker_(tracker), skeleton_(skeleton), last_(run.cameras.size()) {
+    for (const Camera& camera : run.cameras) {
+      const fs::path path = dir / ("overlay_" + camera.name + ".avi");
+      videos_.emplace_back(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), run.fps,
+                           cv::Size(camera.width, camera.height));
+      if (!videos_.back().isOpened()) ThrowInputError(path.string(), "OpenCV cannot write an MJPG video here");
+    }
+  }
+  // The frame's images with the estimate over them (a dropped frame: the last image,
+  // dimmed); also returned.
+  const std::vector<cv::Mat>& Write(const Frame& frame, const TrackedFrame& f) {
+    capsules_.clear();
+    if (f.state.size()) {
+      tracker_.body().Place(f.joints_mm, &capsules_);
+      for (Capsule& c : capsules_) c.radius_from_mm *= f.size, c.radius_to_mm *= f.size;
+    }
+    shown_.resize(run_.cameras.size());
+    for (size_t c = 0; c < run_.cameras.size(); ++c) {
+      if (!frame.dropped && c < frame.images.size()) last_[c] = frame.images[c];
+      const cv::Mat image = frame.dropped && !last_[c].empty() ? cv::Mat(last_[c] * 0.5) : last_[c];
+      shown_[c] = OverlayFrame(image, run_.cameras[c], f, capsules_, skeleton_);
+      videos_[c].write(shown_[c]);
+    }
+    return shown_;
+  }
+
+ private:
+  const TrackRun& run_;
+  const Tracker& tracker_;
+  const Skeleton& skeleton_;
+  std::vector<cv::VideoWriter> videos_;
+  std::vector<cv::Mat> last_, shown_;
+  std::vector<Capsule> capsules_;
+};
+
+}  // namespace
+
+TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progress) {
+  // Everything that can be refused is, before the long part.
+  std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
+  TrackerOptions tracker_options = o.tracker;
+  if (!o.asf.empty()) {
+    model = ModelOnSkeleton(*model, o.asf);
+    tracker_options.known_size = true;
+  }
+  const std::unique_ptr<FrameSource> source = MakeFrameSource(o.source);
+  const auto* clip = dynamic_cast<const ClipFrameSource*>(source.get());
+  const auto* video = dynamic_cast<const VideoFrameSource*>(source.get());
+  if (o.truth_start && !clip) ThrowInputError("--init truth", "needs a clip's ground truth (--clip)");
+  std::optional<OutputFolder> folder;
+  if (!o.out.empty()) folder.emplace(o.out);
+
+  Tracker tracker(*model, source->cameras(), tracker_options);
+  TrackJobResult result;
+  TrackRun& run = result.run;
+  run.model_path = o.model;
+  for (const std::string* s : {&o.source.clip, &o.source.images}) {
+    if (!s->empty()) run.source = *s;
+  }
+  for (const auto* list : {&o.source.videos, &o.source.devices})
+    for (const std::string& v : *list) run.source += (run.source.empty() ? "" : ", ") + v;
+  run.init = o.truth_start ? "truth" : "auto";
+  run.coordinate_names = tracker.state_model().CoordinateNames();
+  run.state_space = tracker.state_model().Name();
+  run.cameras = source->cameras();
+  run.fps = source->fps();
+  run.options = tracker_options;
+  result.live = video && video->live();
+
+  // Overlays are written as the frames go by when the frames bring their images; a clip
+  // tracked from its masks is decoded for them afterwards (kept out of the tracking time).
+  const bool images_now = video || o.source.clip_foreground;
+  const fs::path dir = folder ? folder->partial() : fs::path();
+  std::optional<OverlayWriter> overlays;
+  if (folder && o.overlays && images_now) overlays.emplace(dir, run, tracker, model->skeleton());
+  const auto started = std::chrono::steady_clock::now();
+  double latency_sum = 0;
+  int latency_count = 0, frames_seen = 0;
+  const auto on_frame = [&](const Frame& frame, TrackedFrame& f) {
+    if (result.live && !frame.dropped) {
+      f.latency_ms = frame.latency_ms +
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame.ready).count();
+      // The summary is of the steady state: the frames held for the start wait for it.
+      if (++frames_seen > tracker_options.start_frames) {
+        latency_sum += f.latency_ms;
+        ++latency_count;
+        result.max_latency_ms = std::max(result.max_latency_ms, f.latency_ms);
+      }
+    }
+    if (progress) progress(f, source->NumFrames(), video ? video->skipped() : 0);
+    if (folder && o.save_masks && !frame.dropped) {
+      for (size_t c = 0; c < run.cameras.size(); ++c) {
+        const fs::path path = dir / "masks" / run.cameras[c].name / ClipFrameName(frame.index);
+        fs::create_directories(path.parent_path());
+        if (!cv::imwrite(path.string(), frame.masks[c])) ThrowInputError(path.string(), "cannot write the mask");
+      }
+    }
+    if (overlays) {
+      const std::vector<cv::Mat>& shown = overlays->Write(frame, f);
+      if (o.show) o.show(shown);
+    }
+  };
+  const auto stop = [&] {
+    if (o.stop && o.stop->load()) return result.stopped = "interrupted", true;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (o.max_seconds > 0 && elapsed >= o.max_seconds) return result.stopped = "time limit reached", true;
+    return false;
+  };
+  if (o.truth_start) {
+    tracker.StartAt(TruthGuess(clip->truth(), *model, tracker.state_model()));
+    Frame frame;
+    while (!stop() && source->Next(&frame)) {
+      run.frames.push_back(tracker.Step(frame));
+      on_frame(frame, run.frames.back());
+    }
+  } else {
+    run.frames = TrackSource(source.get(), &tracker, on_frame, stop);
+  }
+  for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
+  result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (video) {
+    if (result.stopped.empty()) result.stopped = video->end_reason();
+    result.skipped = video->skipped();
+    result.unpaired = video->unpaired();
+  }
+  if (latency_count) result.mean_latency_ms = latency_sum / latency_count;
+  if (run.frames.empty()) {
+    ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));
+  }
+
+  if (clip) {
+    std::vector<Eigen::Matrix3Xd> truth;
+    for (const TrackedFrame& f : run.frames) truth.push_back(clip->truth().frames[f.index].joints_mm);
+    result.errors = EvaluateRun(run, model->skeleton(), truth, clip->truth().joint_names);
+  }
+  if (!folder) return result;
+
+  // The results, all or none.
+  OutputBatch batch;
+  batch.Add(dir / "poses.json", FormatJson(PosesJson(run, model->skeleton(), result.errors)));
+  const TrackedMotion motion = MakeTrackedMotion(run, *model);
+  batch.Add(dir / "tracked.amc", FormatAmc(motion.motion, motion.skeleton));
+  batch.Add(dir / "tracked.asf", motion.asf);
+  batch.Add(dir / "tracked.bvh", FormatBvh(AcclaimToBvh(motion.skeleton, motion.motion)));
+  if (result.errors) batch.Add(dir / "track.png", EncodePng(ErrorPlot(*result.errors, run), "track.png"));
+  batch.Commit();
+  if (o.overlays && !images_now) {
+    ClipFrameSourceOptions image_options;
+    image_options.cameras = clip->camera_indices();
+    image_options.exact_masks = o.source.exact_masks;
+    image_options.max_frames = run.frames.back().index + 1;
+    image_options.with_images = true;
+    ClipFrameSource images(o.source.clip, image_options);
+    OverlayWriter writer(dir, run, tracker, model->skeleton());
+    Frame frame;
+    for (const TrackedFrame& f : run.frames) {
+      if (!images.Next(&frame)) break;
+      writer.Write(frame, f);
+    }
+  }
+  overlays.reset();  // close the videos before the folder moves
+  folder->Commit();
+  for (const char* name : {"poses.json", "tracked.amc", "tracked.asf", "tracked.bvh"}) {
+    result.written.push_back(fs::path(o.out) / name);
+  }
+  if (result.errors) result.written.push_back(fs::path(o.out) / "track.png");
+  if (o.overlays)
+    for (const Camera& c : run.cameras) result.written.push_back(fs::path(o.out) / ("overlay_" + c.name + ".avi"));
+  if (o.save_masks) result.written.push_back(fs::path(o.out) / "masks");
+  return result;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,71 @@
+// `jgpm track` as a library call: read a model and a frame source (a clip, videos, an
+// image folder, a live camera), track every frame, write the results folder
+// (tracker/run/track_output.h) whole or not at all, and measure the run against a clip's
+// ground truth.
+//
+// A run that is stopped (Ctrl-C, the time limit, a camera unplugged) still writes what it
+// tracked; a run that fails on bad input writes nothing.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tracker/clip/clip_format.h"
+#include "tracker/filter/tracker.h"
+#include "tracker/frames/frame_source_factory.h"
+#include "tracker/run/track_output.h"
+
+namespace jgpm {
+
+struct TrackJobOptions {
+  std::string model;               // model file
+  std::string asf;                 // the subject's skeleton (ASF), when known: the model's
+                                   // poses are placed on it at size 1 (empty: the model's
+                                   // own skeleton, scaled to the person's estimated size)
+  FrameSourceSpec source;          // where the frames come from
+  std::string out;                 // results folder; empty: write nothing
+  bool truth_start = false;        // start from the clip's truth (--init truth)
+  bool overlays = true;            // overlay videos (a clip's videos are decoded for them)
+  bool save_masks = false;         // OUT/masks/CAMERA/NNNNNN.png: the masks tracked
+  double max_seconds = 0;          // stop after this much wall time (0: no limit)
+  const std::atomic<bool>* stop = nullptr;  // when it turns true (Ctrl-C): stop, and write
+  // Each frame's overlay images as they are made (a live window), when set.
+  std::function<void(const std::vector<cv::Mat>& overlays)> show;
+  TrackerOptions tracker;
+};
+
+struct TrackJobResult {
+  TrackRun run;
+  std::optional<RunErrors> errors;           // against the clip's ground truth
+  std::vector<std::filesystem::path> written;
+  std::string stopped;  // why the run ended before its source did; "" when it did not
+  int skipped = 0;      // frames the source lost (undecodable; a live camera's drops)
+  int unpaired = 0;     // frames not seen by every camera, predicted
+  bool live = false;
+  double loop_seconds = 0;  // the tracking loop's wall time: reading and preparing the
+                            // frames (decoding, background subtraction) and tracking,
+                            // without writing outputs (run.tracking_seconds: filtering)
+  double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate, after the
+                                                   // frames held for the start
+};
+
+// Each tracked frame, the number of frames (-1: live) and the frames the source has lost
+// so far (a live camera's drops).
+using TrackProgress = std::function<void(const TrackedFrame& frame, int total, int skipped)>;
+
+// InputError naming the file or option for anything unusable, before any output is made.
+TrackJobResult RunTrackJob(const TrackJobOptions& options, const TrackProgress& progress = {});
+
+// The model with its reference skeleton replaced by the ASF file's (same bones and dofs,
+// other lengths); InputError naming the file when the channels do not fit it.
+std::unique_ptr<GaitModel> ModelOnSkeleton(const GaitModel& model, const std::string& asf);
+
+// The guess a clip's truth gives at frame 0 for a model's state model: the true root,
+// heading and size, and (when the model can say) the state coordinates of the true pose.
+InitialGuess TruthGuess(const ClipGroundTruth& truth, const GaitModel& model, const StateModel& state_model);
+
+}  // namespace jgpm

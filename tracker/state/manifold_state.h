@@ -1,0 +1,65 @@
+// Particles of the JGPM family's trackers: a point of the joint gait-pose manifold (pose
+// phase along the walking cycle, position along the gait manifold, stride scale), plus the
+// shared placement (tracker/state/state_model.h) with the cadence as its rate.
+//
+// Dynamics, per frame of dt seconds (noise standard deviations are per 1/30 s and grow with
+// sqrt(dt)):
+//   phase   += cadence dt + noise: the walking cycle advances at the cadence;
+//   cadence, gait position, stride scale, heading, size: slow random walks (a walker keeps
+//           their style; the layers of a multi-layer model are reached by the scale's drift);
+//   root    += stride(gait, scale) size cadence dt along the heading, + noise: a walker
+//           moves as far per cycle as the stance foot is carried back (prior/pose_table.h),
+//           which ties speed to stride and cadence instead of leaving it free.
+// Assumed: one person walking forwards on a flat floor (y = 0), facing where they go.
+#pragma once
+
+#include "prior/model/gait_model.h"
+#include "tracker/state/pose_table.h"
+#include "tracker/state/state_model.h"
+
+namespace jgpm {
+
+struct ManifoldDynamics {
+  double phase_noise = 0.015;     // cycles
+  double cadence_noise = 0.01;    // cycles per second
+  double gait_noise = 0.03;       // gait positions
+  double scale_noise = 0.01;
+  double heading_noise_deg = 1.0;
+  double root_noise_mm = 8;
+  double size_noise = 0.001;
+  double min_cadence = 0.5, max_cadence = 1.6;  // cycles per second
+  double min_size = 0.75, max_size = 1.3;
+  // A start without a manifold point draws the stride scale from N(1, start_scale_std)
+  // within the layers' range (0: uniform over it). Scale 1 is the recorded strides; the
+  // other layers are the training data stretched or shrunk (eq. 5) to cover other people,
+  // so most walkers are near 1 and a uniform start spends most particles far from it.
+  double start_scale_std = 0.15;
+  // The annealing's diffusion at its first layer.
+  double phase_diffusion = 0.04, gait_diffusion = 0.4, scale_diffusion = 0.06, root_diffusion_mm = 30,
+         heading_diffusion_deg = 6, cadence_diffusion = 0.03, size_diffusion = 0.01;
+};
+
+class ManifoldStateModel : public StateModel {
+ public:
+  // `model` (a JGPM-family model) and `table` (built from it) must outlive this.
+  ManifoldStateModel(const GaitModel& model, const PoseTable& table, const ManifoldDynamics& dynamics = {});
+
+  std::string Name() const override { return "manifold"; }
+  int Dimension() const override { return 8; }
+  const Skeleton& skeleton() const override { return model_.skeleton(); }
+  void Sample(const InitialGuess& guess, Random* random, double* state) const override;
+  void Predict(double dt, Random* random, double* state) const override;
+  Eigen::VectorXd DiffusionStd() const override;
+  void Normalise(double* state) const override;
+  double Period(int dimension) const override;
+  double Evaluate(const double* state, Eigen::Matrix3Xd* joints) const override;
+  Eigen::VectorXd Pose(const double* state) const override;
+  std::vector<std::string> CoordinateNames() const override { return {"phase", "gait", "scale"}; }
+
+ private:
+  const GaitModel& model_;
+  const PoseTable& table_;
+  ManifoldDynamics d_;
+};
+
+}  // namespace jgpm

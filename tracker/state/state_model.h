@@ -1,0 +1,106 @@
+// What a particle is and how it moves: one implementation per kind of prior.
+//   tracker/state/manifold_state.h     the JGPM family: (phase, gait, stride scale) on the manifold
+//   tracker/state/latent_state.h       other GP models and PCA: a point of the latent space
+//   tracker/state/joint_space_state.h  the classic baseline without a learned prior: 43 angles
+// Every state ends with the same five numbers: where the person stands on the floor (x, z
+// in mm, the world's y is up), which way they face (heading, radians about +y, 0 facing
+// +z), how fast they go (cadence in cycles per second, or speed in m/s), and their size
+// (one scale on the skeleton's bone lengths).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "io/gait/gait_pose.h"
+#include "io/mocap/kinematics.h"
+#include "io/mocap/skeleton.h"
+#include "tracker/state/random.h"
+
+namespace jgpm {
+
+// Indices of the shared part, from StateModel::placement().
+struct PlacementIndex {
+  int x, z, heading, rate, size;
+};
+
+// The rough where and how big of a person, from initialisation.
+struct InitialGuess {
+  Eigen::Vector2d floor_mm = Eigen::Vector2d::Zero();  // root (x, z)
+  double floor_std_mm = 150;
+  double heading_rad = 0;
+  double heading_std_rad = 3.2;  // >= pi: any heading
+  double size = 1;
+  double size_std = 0.05;
+  double speed_mm_s = -1;  // walking speed seen at the start; < 0: unknown
+  // The state's own coordinates when known (e.g. from a clip's truth); empty: spread over
+  // everything the prior allows. Known ones are spread by a quarter of the diffusion.
+  Eigen::VectorXd coordinates;
+};
+
+class StateModel {
+ public:
+  virtual ~StateModel() = default;
+
+  virtual std::string Name() const = 0;
+  virtual int Dimension() const = 0;
+  PlacementIndex placement() const {
+    const int k = Dimension() - 5;
+    return {k, k + 1, k + 2, k + 3, k + 4};
+  }
+  // The skeleton whose bone ends Evaluate returns (the model's reference skeleton).
+  virtual const Skeleton& skeleton() const = 0;
+
+  // A state drawn around an initial guess (the pose spread over everything the prior allows).
+  virtual void Sample(const InitialGuess& guess, Random* random, double* state) const = 0;
+  // One frame of the dynamics (`dt` seconds), process noise included.
+  virtual void Predict(double dt, Random* random, double* state) const = 0;
+  // The annealing's diffusion: Gaussian noise of `scale` times DiffusionStd per dimension,
+  // then Normalise.
+  void Diffuse(double scale, Random* random, double* state) const;
+  virtual Eigen::VectorXd DiffusionStd() const = 0;
+  // Wraps periodic coordinates and clamps bounded ones.
+  virtual void Normalise(double* state) const = 0;
+  // Period of a coordinate (0: not periodic), for averaging states.
+  virtual double Period(int dimension) const;
+
+  // The bone ends in the world (mm, 3 x bones of skeleton()) and ln p(x|M) of the state
+  // (0 when the model has no prior). Thread-safe; `joints` is resized when needed.
+  virtual double Evaluate(const double* state, Eigen::Matrix3Xd* joints) const = 0;
+  // The pose's channels (degrees, the gait pose layout of the model's skeleton).
+  virtual Eigen::VectorXd Pose(const double* state) const = 0;
+  // The state's own coordinates for people and files (e.g. "phase", "gait", "scale").
+  virtual std::vector<std::string> CoordinateNames() const = 0;
+};
+
+// Root-relative bone ends (size 1, facing +z, as a pose table or forward kinematics gives
+// them) placed in the world: scaled by `size`, turned by `heading_rad` about +y, the root
+// at (x, z) and raised so the lowest foot joint is `clearance_mm` above the floor.
+void PlaceInWorld(const Eigen::Matrix3Xd& relative, double foot_height_mm, double x_mm, double z_mm,
+                  double heading_rad, double size, double clearance_mm, Eigen::Matrix3Xd* world);
+
+// Height of the lowest foot joint above the floor while walking (mm): CMU's foot and toe
+// bone ends sit on the skin's surface, a shoe's sole lower.
+constexpr double kFootClearanceMm = 40;
+
+// Gait poses (channels in degrees) to bone ends in the world, by forward kinematics of a
+// skeleton: the exact counterpart of a pose table's lookup.
+class PosePlacer {
+ public:
+  // Copies what it needs from the skeleton. InputError when it lacks a gait joint's bone.
+  explicit PosePlacer(const Skeleton& skeleton);
+  const GaitPoseLayout& layout() const { return layout_; }
+  // Root-relative bone ends (size 1, facing +z) and the lowest foot joint's height.
+  void Relative(const double* pose, Eigen::Matrix3Xd* relative, double* foot_height_mm) const;
+  // Placed as PlaceInWorld places them.
+  void Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
+             Eigen::Matrix3Xd* world) const;
+
+ private:
+  GaitPoseLayout layout_;
+  Kinematics kinematics_;
+  std::vector<int> feet_;
+};
+
+}  // namespace jgpm
