@@ -196,15 +196,25 @@ TEST(FullTrainer, ConvergesAndReports) {
   // This smooth synthetic data keeps paying a little for ever larger b1; a looser plateau.
   options.plateau_tolerance = 1e-2;
   int calls = 0, last_iteration = -1;
+  std::vector<double> gains;  // the plateau window's gain at each report
   options.progress = [&](const TrainingProgress& progress) {
     ++calls;
     EXPECT_GT(progress.iteration, last_iteration);
     last_iteration = progress.iteration;
     EXPECT_EQ(progress.stage, "full");
+    EXPECT_EQ(progress.plateau_tolerance, 1e-2);
+    EXPECT_GE(progress.seconds_since_improvement, 0);
+    gains.push_back(progress.window_improvement);
   };
   GpParameters x = p.start;
   const TrainingSummary s = TrainFull(*p.objective, &x, options);
   EXPECT_EQ(s.termination, Termination::kConverged) << s.BriefReport();
+  // The progress line's convergence state is the test's: NaN until the window fills, then
+  // at or above the tolerance until the report of the iteration that converged.
+  ASSERT_GT(gains.size(), static_cast<size_t>(options.plateau_window));
+  for (int k = 0; k < options.plateau_window; ++k) EXPECT_TRUE(std::isnan(gains[k])) << k;
+  for (size_t k = options.plateau_window; k + 1 < gains.size(); ++k) EXPECT_GE(gains[k], 1e-2) << k;
+  EXPECT_LT(gains.back(), 1e-2);
   EXPECT_LT(s.final_objective, s.initial_objective);
   EXPECT_NEAR(s.final_objective, p.objective->Evaluate(x, nullptr).total, 1e-9 * std::abs(s.final_objective));
   EXPECT_GT(calls, 1);
@@ -212,6 +222,13 @@ TEST(FullTrainer, ConvergesAndReports) {
   // The held hyper-parameters did not move.
   EXPECT_EQ(x.log_beta[1], p.start.log_beta[1]);
   EXPECT_EQ(x.log_alpha[3], p.start.log_alpha[3]);
+}
+
+TEST(WindowImprovement, IsTheRelativeGainOverTheWindow) {
+  EXPECT_TRUE(std::isnan(WindowImprovement({-10, -12}, 2)));  // the window has not filled
+  EXPECT_DOUBLE_EQ(WindowImprovement({-10, -12, -15}, 2), 5.0 / 15);
+  EXPECT_DOUBLE_EQ(WindowImprovement({-10, -12, -15, -15}, 2), 3.0 / 15);
+  EXPECT_DOUBLE_EQ(WindowImprovement({8, 4}, 1), 1.0);
 }
 
 TEST(FullTrainer, PlateauWindowStopsEarly) {
