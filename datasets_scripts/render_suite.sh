@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Renders the tracking benchmark (datasets_scripts/tracking_suite.txt) into OUT_DIR
-# (default build/tracking_suite), one folder per clip; clips already there are kept.
+# Renders the tracking benchmark (datasets_scripts/tracking_suite.txt, or the suite file
+# SUITE names, e.g. SUITE=datasets_scripts/realism_suite.txt) into OUT_DIR (default
+# build/tracking_suite), one folder per clip; clips already there are kept.
 # Data root: $JGPM_DATA, else ./data/cmu, else ../shared/data/cmu. Extra arguments go to
 # every `jgpm render` (e.g. --max-frames 10 for a quick look). ONLY=NAME renders that clip
 # alone.
@@ -29,5 +30,5 @@ while read -r name trial options; do
   echo "== $name: $trial $options"
   # shellcheck disable=SC2086  # the options are words
   "$jgpm" render --amc "$root/subjects/$subject/$trial.amc" --out "$out/$name" $options "$@"
-done < datasets_scripts/tracking_suite.txt
+done < "${SUITE:-datasets_scripts/tracking_suite.txt}"
 echo "tracking suite in $out"

@@ -17,6 +17,9 @@ namespace {
 struct RenderArguments {
   std::string asf;
   std::string amc;
+  std::string rig = "ring";
+  bool cameras_given = false;  // --cameras (else the webcam rig has its one)
+  std::string clothing = "none";
   std::vector<std::string> cameras;
   std::string out;
   double amc_fps = 120;
@@ -27,8 +30,11 @@ void RunRender(const RenderArguments& a) {
   MotionFileOptions files;
   if (!a.asf.empty()) files.asf = a.asf;
   const std::filesystem::path asf = SkeletonForAmc(a.amc, files);
+  ClipOptions clip = a.clip;
+  JGPM_CHECK(ParseRigKind(a.rig, &clip.rig.kind) && ParseClothing(a.clothing, &clip.body.clothing));  // CLI11 checked
+  if (clip.rig.kind == RigKind::kWebcam && !a.cameras_given) clip.rig.num_cameras = 1;
   std::string why;
-  if (!a.clip.Check(&why)) ThrowInputError("jgpm render", why);
+  if (!clip.Check(&why)) ThrowInputError("jgpm render", why);
   std::vector<Camera> cameras;
   for (const std::string& path : a.cameras) {
     const CameraFile file = ReadCameraYaml(path);
@@ -41,7 +47,7 @@ void RunRender(const RenderArguments& a) {
   Motion motion = ReadAmc(a.amc, skeleton);
   motion.frames_per_second = a.amc_fps;
   ProgressLine line("render");
-  const ClipSummary summary = RenderClip(skeleton, motion, {asf.string(), a.amc}, cameras, a.clip, a.out,
+  const ClipSummary summary = RenderClip(skeleton, motion, {asf.string(), a.amc}, cameras, clip, a.out,
                                          [&line](int done, int total) { line.Update(done, total, "images"); });
   line.Finish();
   std::printf("rendered %s -> %s\n", summary.BriefReport().c_str(), a.out.c_str());
@@ -69,12 +75,16 @@ void AddRenderCommands(CLI::App& app) {
       ->capture_default_str()->check(CLI::PositiveNumber);
   render->add_option("--max-frames", a->clip.max_frames, "render at most this many clip frames (0: all)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  render->add_option("--cameras", a->clip.rig.num_cameras, "default rig: cameras on the ring (1-4)")
+  render->add_option("--rig", a->rig,
+                     "cameras when none are given: ring (the lab's, at 1.5 m), surveillance (4-8 m up, 8-19 m "
+                     "away, people 60-150 px tall) or webcam (one, 1-1.5 m up, 60-90 degrees across, near the walk)")
+      ->check(CLI::IsMember({"ring", "surveillance", "webcam"}))->capture_default_str()->excludes(camera);
+  render->add_option("--cameras", a->clip.rig.num_cameras, "rig: how many cameras (1-4; the webcam rig has one)")
       ->capture_default_str()->check(CLI::Range(1, 4))->excludes(camera);
-  render->add_option("--width", a->clip.rig.width, "default rig: image width")
-      ->capture_default_str()->check(CLI::Range(32, 4096))->excludes(camera);
-  render->add_option("--height", a->clip.rig.height, "default rig: image height")
-      ->capture_default_str()->check(CLI::Range(32, 4096))->excludes(camera);
+  render->add_option("--width", a->clip.rig.width, "rig: image width (default: ring 320, others 640)")
+      ->check(CLI::Range(32, 4096))->excludes(camera);
+  render->add_option("--height", a->clip.rig.height, "rig: image height (default: ring 240, others 480)")
+      ->check(CLI::Range(32, 4096))->excludes(camera);
   render->add_option("--ring-radius", a->clip.rig.ring_radius_mm, "default rig: distance from the walk's centre, mm")
       ->capture_default_str()->check(CLI::Range(1000.0, 50000.0))->excludes(camera);
   render->add_option("--sensor-noise", a->clip.degradations.sensor_noise, "video noise std, grey levels")
@@ -93,9 +103,33 @@ void AddRenderCommands(CLI::App& app) {
       ->capture_default_str()->check(CLI::Range(0.0, 0.99));
   render->add_option("--width-scale", a->clip.body.width_scale, "body widths times this")
       ->capture_default_str()->check(CLI::Range(0.25, 4.0));
-  render->add_option("--seed", a->clip.seed, "random seed of the degradations")->capture_default_str();
+  render->add_option("--body-seed", a->clip.body.body_seed,
+                     "another person for each N > 0: widths drawn around the adult mean (+-25%), head, hands and "
+                     "shoulders of other sizes, bone lengths the subject's (0: the tracker's own body)")
+      ->capture_default_str();
+  render->add_option("--clothing", a->clothing,
+                     "none, trousers (loose, filling the crotch), coat (to mid-thigh) or skirt (swinging with the "
+                     "thighs): volumes the tracker's body cannot represent")
+      ->check(CLI::IsMember({"none", "trousers", "coat", "skirt"}))->capture_default_str();
+  render->add_flag("--bag", a->clip.body.bag, "a shoulder bag at the right hip");
+  render->add_flag("--shadow", a->clip.scene.shadow,
+                   "the walker's shadow on the floor from a random light (in the video and the observed masks, "
+                   "not the exact ones)");
+  render->add_option("--occluders", a->clip.scene.occluders,
+                     "static objects between the cameras and the walk (pillar, table, bicycle) and as many things "
+                     "passing in front of the walker")
+      ->capture_default_str()->check(CLI::Range(0, 8));
+  render->add_option("--calibration-error", a->clip.calibration_error,
+                     "the written cameras differ from the rendering ones by this times a real calibration's error "
+                     "(1: focal 1.5%, principal point 4 px, rotation 0.7 deg, centre 30 mm)")
+      ->capture_default_str()->check(CLI::Range(0.0, 10.0));
+  render->add_option("--seed", a->clip.seed, "random seed of the degradations, rig, scene and calibration error")
+      ->capture_default_str();
   render->add_flag("!--no-contact-sheet", a->clip.contact_sheet, "skip contact_sheet.png");
-  render->callback([a] { RunRender(*a); });
+  render->callback([a, render] {
+    a->cameras_given = render->get_option("--cameras")->count() > 0;
+    RunRender(*a);
+  });
 }
 
 }  // namespace jgpm::cli

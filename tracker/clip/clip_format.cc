@@ -85,12 +85,26 @@ std::string FormatGroundTruth(const ClipGroundTruth& t) {
     parts.push_back({{"name", p.name}, {"from", p.from}, {"to", p.to}, {"radius_from_mm", p.radius_from_mm},
                      {"radius_to_mm", p.radius_to_mm}});
   }
-  truth["body_model"] = {{"width_scale", t.body_width_scale}, {"parts", parts}};
+  truth["body_model"] = {{"width_scale", t.body.width_scale}, {"parts", parts}};
+  if (!t.body.TrackersBody()) {
+    truth["body_model"]["body_seed"] = t.body.body_seed;
+    truth["body_model"]["clothing"] = std::string(ClothingName(t.body.clothing));
+    truth["body_model"]["bag"] = t.body.bag;
+  }
+  if (t.rig != RigKind::kRing || t.calibration_error > 0 || t.shadow || !t.occluders.empty()) {
+    truth["scene"] = {{"rig", std::string(RigKindName(t.rig))}, {"calibration_error", t.calibration_error},
+                      {"shadow", t.shadow}, {"occluders", t.occluders}};
+  }
   truth["joint_names"] = t.joint_names;
   truth["joints_note"] = "joints_mm[j] is the end of bone j (the root: its position), world y up, mm";
   json cameras = json::array();
   for (const Camera& c : t.cameras) cameras.push_back(CameraJson(c));
   truth["cameras"] = cameras;
+  if (!t.render_cameras.empty()) {
+    json rendered = json::array();
+    for (const Camera& c : t.render_cameras) rendered.push_back(CameraJson(c));
+    truth["render_cameras"] = rendered;
+  }
   json frames = json::array();
   for (size_t k = 0; k < t.frames.size(); ++k) {
     const ClipFrame& f = t.frames[k];
@@ -138,7 +152,25 @@ ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& sou
   std::string why;
   if (!deg.Check(&why)) in.Fail("degradations", why);
   const json& body = in.Field(root, "body_model", "");
-  t.body_width_scale = in.Get<double>(body, "width_scale", "body_model.");
+  t.body.width_scale = in.Get<double>(body, "width_scale", "body_model.");
+  if (body.contains("body_seed")) {  // not today's body
+    t.body.body_seed = in.Get<uint64_t>(body, "body_seed", "body_model.");
+    if (!ParseClothing(in.Get<std::string>(body, "clothing", "body_model."), &t.body.clothing)) {
+      in.Fail("body_model.clothing", "expected none, trousers, coat or skirt");
+    }
+    t.body.bag = in.Get<bool>(body, "bag", "body_model.");
+  }
+  if (!t.body.Check(&why)) in.Fail("body_model", why);
+  if (root.contains("scene")) {  // not today's lab
+    const json& scene = in.Field(root, "scene", "");
+    if (!ParseRigKind(in.Get<std::string>(scene, "rig", "scene."), &t.rig)) {
+      in.Fail("scene.rig", "expected ring, surveillance or webcam");
+    }
+    t.calibration_error = in.Get<double>(scene, "calibration_error", "scene.");
+    if (!(t.calibration_error >= 0 && t.calibration_error <= 10)) in.Fail("scene.calibration_error", "expected 0 to 10");
+    t.shadow = in.Get<bool>(scene, "shadow", "scene.");
+    t.occluders = in.Get<std::vector<std::string>>(scene, "occluders", "scene.");
+  }
   const json& parts = in.Field(body, "parts", "body_model.");
   if (!parts.is_array()) in.Fail("body_model.parts", "expected an array");
   for (size_t i = 0; i < parts.size(); ++i) {
@@ -157,6 +189,18 @@ ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& sou
   if (!cameras.is_array() || cameras.empty()) in.Fail("cameras", "expected a non-empty array");
   for (size_t c = 0; c < cameras.size(); ++c) {
     t.cameras.push_back(ReadCamera(in, cameras[c], "cameras[" + std::to_string(c) + "]."));
+  }
+  if (root.contains("render_cameras")) {
+    const json& rendered = in.Field(root, "render_cameras", "");
+    if (!rendered.is_array() || rendered.size() != cameras.size()) {
+      in.Fail("render_cameras", "expected one per camera (" + std::to_string(cameras.size()) + ")");
+    }
+    for (size_t c = 0; c < rendered.size(); ++c) {
+      t.render_cameras.push_back(ReadCamera(in, rendered[c], "render_cameras[" + std::to_string(c) + "]."));
+      if (t.render_cameras.back().name != t.cameras[c].name) {
+        in.Fail("render_cameras[" + std::to_string(c) + "].name", "expected " + t.cameras[c].name);
+      }
+    }
   }
   const json& frames = in.Field(root, "frames", "");
   if (!frames.is_array()) in.Fail("frames", "expected an array");

@@ -3,7 +3,8 @@
 //
 //   ground_truth.json        frame rate, cameras, per frame the time, source frame and
 //                            3-D joint positions (mm), and which frames were dropped
-//   camK.yaml                each camera (calibration/camera.h YAML)
+//   camK.yaml                each camera (calibration/camera.h YAML), as calibrated: with
+//                            calibration error, not the camera that rendered the images
 //   camK.avi                 colour video (MJPG): shaded body over a textured room, noise
 //   background/camK.png      the empty room, as a lab records it before the take
 //   masks/camK/NNNNNN.png    exact silhouettes (ray cast), one per kept frame
@@ -21,7 +22,9 @@
 #include <Eigen/Core>
 
 #include "calibration/camera.h"
+#include "tracker/clip/clip_body.h"
 #include "tracker/clip/clip_degradations.h"
+#include "tracker/clip/clip_rig.h"
 
 namespace jgpm {
 
@@ -66,10 +69,18 @@ struct ClipGroundTruth {
   int image_width = 0, image_height = 0;
   uint64_t seed = 0;
   ClipDegradations degradations;
-  double body_width_scale = 1;
-  std::vector<ClipBodyPart> body_parts;
+  ClipBodyOptions body;                  // the person rendered (width scale, seed, clothing, bag)
+  std::vector<ClipBodyPart> body_parts;  // its shapes (ends: bone names, or weighted sums)
   std::vector<std::string> joint_names;  // bone names, joints_mm's columns
-  std::vector<Camera> cameras;
+  // The scene: the rig's kind, the calibration error's scale, the shadow, the occluders'
+  // kinds. Written only when not today's defaults (ring, 0, none, none).
+  RigKind rig = RigKind::kRing;
+  double calibration_error = 0;
+  bool shadow = false;
+  std::vector<std::string> occluders;
+  std::vector<Camera> cameras;         // as calibrated (camK.yaml): the tracker's cameras
+  std::vector<Camera> render_cameras;  // the cameras that rendered the images, when they
+                                       // differ (calibration error); empty otherwise
   std::vector<ClipFrame> frames;
 };
 

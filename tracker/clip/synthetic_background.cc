@@ -8,7 +8,7 @@
 namespace jgpm {
 namespace {
 
-constexpr double kTileMm = 600, kGroutMm = 12, kWallHeightMm = 3000, kPanelMm = 700;
+constexpr double kTileMm = 600, kGroutMm = 12, kPanelMm = 700;
 
 // A repeatable pseudo-random value in [0, 1) per integer cell.
 double Hash(int64_t a, int64_t b) {
@@ -21,7 +21,7 @@ double Hash(int64_t a, int64_t b) {
 
 // Colour (B, G, R in [0, 255]) seen along one ray.
 Eigen::Vector3d Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& ray,
-                      const Eigen::Vector3d& centre, double radius) {
+                      const Eigen::Vector3d& centre, double radius, double wall_height) {
   // Walls: |(o + t d - c)_xz| = radius, the camera inside.
   const Eigen::Vector2d o(origin.x() - centre.x(), origin.z() - centre.z()), d(ray.x(), ray.z());
   const double a = d.squaredNorm(), b = o.dot(d), c = o.squaredNorm() - radius * radius;
@@ -36,7 +36,7 @@ Eigen::Vector3d Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& ray,
     return Eigen::Vector3d(150, 165, 180) * (0.8 + 0.35 * v);  // beige tiles
   }
   const Eigen::Vector3d p = origin + t_wall * ray;
-  if (p.y() > kWallHeightMm) return {205, 205, 200};  // ceiling
+  if (p.y() > wall_height) return {205, 205, 200};  // ceiling
   if (p.y() < 120) return {60, 65, 70};                // skirting board
   const double angle = std::atan2(p.z() - centre.z(), p.x() - centre.x());
   const double s = angle * radius / kPanelMm;
@@ -44,7 +44,7 @@ Eigen::Vector3d Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& ray,
   const double v = Hash(panel, 7);
   // Panels in a few muted colours, with a dark seam and a picture on some of them.
   if (s - std::floor(s) < 0.03) return {70, 75, 80};
-  const double u = s - std::floor(s), h = p.y() / kWallHeightMm;
+  const double u = s - std::floor(s), h = p.y() / wall_height;
   if (v > 0.6 && u > 0.2 && u < 0.8 && h > 0.45 && h < 0.75)
     return Eigen::Vector3d(60 + 150 * Hash(panel, 1), 60 + 150 * Hash(panel, 2), 60 + 150 * Hash(panel, 3));
   const Eigen::Vector3d colours[3] = {{170, 190, 200}, {150, 170, 150}, {190, 180, 175}};
@@ -54,7 +54,7 @@ Eigen::Vector3d Shade(const Eigen::Vector3d& origin, const Eigen::Vector3d& ray,
 }  // namespace
 
 cv::Mat RenderBackground(const Camera& camera, const Eigen::Vector3d& room_centre_mm,
-                         double room_radius_mm) {
+                         double room_radius_mm, double wall_height_mm) {
   const int w = camera.width, h = camera.height;
   Eigen::Matrix2Xd pixels(2, 4 * static_cast<Eigen::Index>(w) * h);
   for (int v = 0; v < h; ++v)
@@ -68,7 +68,7 @@ cv::Mat RenderBackground(const Camera& camera, const Eigen::Vector3d& room_centr
     for (int u = 0; u < w; ++u) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       for (int s = 0; s < 4; ++s)
-        sum += Shade(origin, rays.col(4 * (v * w + u) + s), room_centre_mm, room_radius_mm);
+        sum += Shade(origin, rays.col(4 * (v * w + u) + s), room_centre_mm, room_radius_mm, wall_height_mm);
       const Eigen::Vector3d c = sum / 4;
       image.at<cv::Vec3b>(v, u) = cv::Vec3b(cv::saturate_cast<uchar>(c[0]), cv::saturate_cast<uchar>(c[1]),
                                             cv::saturate_cast<uchar>(c[2]));

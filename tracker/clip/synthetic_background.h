@@ -12,8 +12,9 @@
 namespace jgpm {
 
 // BGR image of the camera's size. `room_centre_mm`: the walls are a cylinder of radius
-// `room_radius_mm` about this point's vertical axis, 3 m high under a plain ceiling.
+// `room_radius_mm` about this point's vertical axis, `wall_height_mm` high under a plain
+// ceiling (a camera must be inside: raise both for cameras high and far away).
 cv::Mat RenderBackground(const Camera& camera, const Eigen::Vector3d& room_centre_mm,
-                         double room_radius_mm = 12000);
+                         double room_radius_mm = 12000, double wall_height_mm = 3000);
 
 }  // namespace jgpm

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include <opencv2/imgcodecs.hpp>
@@ -31,7 +32,11 @@ bool ClipOptions::Check(std::string* why) const {
     if (why) *why = "max frames: expected >= 0";
     return false;
   }
-  return rig.Check(why) && degradations.Check(why) && body.Check(why);
+  if (!(calibration_error >= 0 && calibration_error <= 10)) {
+    if (why) *why = "calibration error: expected a scale of 0 to 10";
+    return false;
+  }
+  return rig.Check(why) && degradations.Check(why) && body.Check(why) && scene.Check(why);
 }
 
 std::string ClipSummary::BriefReport() const {
@@ -45,12 +50,15 @@ std::string ClipSummary::BriefReport() const {
 namespace {
 
 // BGR colour of each material.
-cv::Vec3f MaterialColour(BodyMaterial material) {
+cv::Vec3f MaterialColour(ClipMaterial material) {
   switch (material) {
-    case BodyMaterial::kSkin: return {120, 150, 210};
-    case BodyMaterial::kShirt: return {170, 90, 50};
-    case BodyMaterial::kTrousers: return {60, 55, 60};
-    case BodyMaterial::kShoes: return {35, 35, 40};
+    case ClipMaterial::kSkin: return {120, 150, 210};
+    case ClipMaterial::kShirt: return {170, 90, 50};
+    case ClipMaterial::kTrousers: return {60, 55, 60};
+    case ClipMaterial::kShoes: return {35, 35, 40};
+    case ClipMaterial::kCoat: return {70, 110, 150};
+    case ClipMaterial::kSkirt: return {90, 60, 140};
+    case ClipMaterial::kBag: return {40, 70, 90};
   }
   return {128, 128, 128};
 }
@@ -102,12 +110,12 @@ void CheckCameras(const std::vector<Camera>& cameras) {
   }
 }
 
-// The colour frame: the room, clutter blobs behind the walker (`clutter`: 1 + blob index,
-// 0 for none), the Lambert-shaded body.
+// The colour frame: the room (CV_32FC3), clutter blobs behind the walker (`clutter`: 1 +
+// blob index, 0 for none), the Lambert-shaded body.
 void ComposeFrame(const cv::Mat& background, const BodyImage& body, const std::vector<cv::Vec3f>& colours,
                   const cv::Mat& clutter, const MovingClutter& blobs, cv::Mat* colour) {
   static const Eigen::Vector3d kLight = Eigen::Vector3d(0.4, 1.0, -0.3).normalized();
-  background.convertTo(*colour, CV_32FC3);
+  background.copyTo(*colour);
   for (int v = 0; v < colour->rows; ++v) {
     cv::Vec3f* out = colour->ptr<cv::Vec3f>(v);
     const uint8_t* part = body.part.ptr<uint8_t>(v);
@@ -127,7 +135,7 @@ void ComposeFrame(const cv::Mat& background, const BodyImage& body, const std::v
 
 // The ground truth of the clip's frames (joints, times, drops) and what made them.
 ClipGroundTruth GroundTruth(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
-                            const std::vector<Camera>& cameras, const ClipOptions& options, const BodyModel& body,
+                            const std::vector<Camera>& cameras, const ClipOptions& options, const ClipBody& body,
                             const std::vector<int>& source_frames, const std::vector<Eigen::Matrix3Xd>& joints,
                             const std::vector<bool>& dropped) {
   ClipGroundTruth t;
@@ -139,10 +147,10 @@ ClipGroundTruth GroundTruth(const Skeleton& skeleton, const Motion& motion, cons
   t.image_height = cameras[0].height;
   t.seed = options.seed;
   t.degradations = options.degradations;
-  t.body_width_scale = options.body.width_scale;
-  for (const BodyPart& p : body.parts()) {
-    t.body_parts.push_back({p.name, skeleton.bones[p.from_joint].name, skeleton.bones[p.to_joint].name,
-                            p.radius_from_mm, p.radius_to_mm});
+  t.body = options.body;
+  for (const ClipShape& s : body.shapes()) {
+    t.body_parts.push_back({s.name, body.EndText(s.from, s.from_offset_mm), body.EndText(s.to, s.to_offset_mm),
+                            s.radius_from_mm, s.radius_to_mm});
   }
   for (const Bone& bone : skeleton.bones) t.joint_names.push_back(bone.name);
   t.cameras = cameras;
@@ -184,8 +192,15 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     source_frames[k] = std::min(motion.NumFrames() - 1, static_cast<int>(std::lround(k * step)));
     kinematics.Compute(motion.Frame(source_frames[k]), &joints[k]);
   }
-  if (cameras.empty()) cameras = DefaultRig(joints, options.rig);
-  const BodyModel body(skeleton, options.body, source.asf);
+  if (cameras.empty()) cameras = MakeRig(joints, options.rig, options.seed);
+  // The cameras as a calibration would give them: written to the clip, used by the tracker.
+  std::vector<Camera> calibrated = cameras;
+  if (options.calibration_error > 0) {
+    std::mt19937_64 calibration_rng(options.seed * 0xD1B54A32D192ED03ull + 7);
+    for (Camera& c : calibrated) c = Miscalibrate(c, options.calibration_error, &calibration_rng);
+  }
+  const ClipBody body(skeleton, options.body, source.asf);
+  const ClipScene scene(options.scene, cameras, joints, options.seed);
 
   std::mt19937_64 random(options.seed);
   const ClipDegradations& deg = options.degradations;
@@ -199,16 +214,23 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   const fs::path& partial = folder.partial();
   const ClipPaths files{partial};
 
-  // The room's centre: the walk's middle.
+  // The room's centre: the walk's middle. It holds every camera, 3 m high unless one is
+  // higher.
   Eigen::Vector3d room = Eigen::Vector3d::Zero();
   for (const Eigen::Matrix3Xd& j : joints) room += j.col(0);
   room /= frames;
   room.y() = 0;
+  double room_radius = 12000, wall_height = 3000;
+  for (const Camera& c : cameras) {
+    const Eigen::Vector3d at = c.CentreInWorld();
+    room_radius = std::max(room_radius, std::hypot(at.x() - room.x(), at.z() - room.z()) + 3000);
+    wall_height = std::max(wall_height, at.y() + 1000);
+  }
 
   ClipSummary summary;
   summary.frames = frames;
   summary.dropped = static_cast<int>(std::count(dropped.begin(), dropped.end(), true));
-  summary.cameras = cameras;
+  summary.cameras = calibrated;
   std::vector<std::vector<cv::Mat>> sheet_tiles(cameras.size());
   std::vector<int> sheet_frames;
   {
@@ -218,13 +240,13 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     for (int i = 0; i < n; ++i) sheet_frames.push_back(kept[(kept.size() - 1) * i / std::max(1, n - 1)]);
   }
   std::vector<cv::Vec3f> colours;
-  for (const BodyPart& part : body.parts()) colours.push_back(MaterialColour(part.material));
+  for (const ClipShape& shape : body.shapes()) colours.push_back(MaterialColour(shape.material));
   std::vector<Capsule> capsules;
   const int total = frames * static_cast<int>(cameras.size());
   int done = 0;
   for (size_t c = 0; c < cameras.size(); ++c) {
     const Camera& camera = cameras[c];
-    WriteCameraYaml({camera, true, -1}, files.CameraYaml(camera.name).string());
+    WriteCameraYaml({calibrated[c], true, -1}, files.CameraYaml(camera.name).string());
     fs::create_directories(files.MaskFolder(camera.name));
     fs::create_directories(files.ObservedFolder(camera.name));
     const fs::path video_path = files.Video(camera.name);
@@ -233,10 +255,19 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     if (!video.isOpened())
       ThrowInputError(video_path.string(), "OpenCV cannot write an MJPG video here");
     const RayCaster caster(camera);
-    const cv::Mat background = RenderBackground(camera, room);
+    // The room with the occluders in it, and how far away they are.
+    cv::Mat room8 = RenderBackground(camera, room, room_radius, wall_height), objects_depth, objects_colour;
+    scene.RenderObjects(caster, &objects_depth, &objects_colour);
+    if (!scene.objects().empty()) {
+      cv::Mat objects8;
+      objects_colour.convertTo(objects8, CV_8UC3);
+      objects8.copyTo(room8, objects_depth < std::numeric_limits<float>::infinity());
+    }
+    cv::Mat background;
+    room8.convertTo(background, CV_32FC3);
     {
       // The empty room as the camera saw it before anyone walked in, as a lab records it.
-      cv::Mat plate = background.clone(), plate_noise(camera.height, camera.width, CV_32FC3), plate8;
+      cv::Mat plate = room8.clone(), plate_noise(camera.height, camera.width, CV_32FC3), plate8;
       cv::RNG plate_rng(options.seed * 104729 + c);
       plate_rng.fill(plate_noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(deg.sensor_noise));
       plate += plate_noise;
@@ -247,22 +278,50 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     // Each camera's own random stream, so adding a camera does not change the others.
     std::mt19937_64 rng(options.seed * 1000003 + c);
     MovingClutter clutter(deg.clutter_blobs, camera.width, camera.height, &rng);
+    // With occluders, things also pass in front of the walker (as many as the occluders,
+    // from their own random stream).
+    std::mt19937_64 passer_rng(options.seed * 0x94D049BB133111EBull + c);
+    MovingClutter passers(options.scene.occluders, camera.width, camera.height, &passer_rng);
     BodyImage image;
     cv::Mat colour(camera.height, camera.width, CV_32FC3), noise(camera.height, camera.width, CV_32FC3);
-    cv::Mat frame8, clutter_mask(camera.height, camera.width, CV_8UC1);
+    cv::Mat frame8, clutter_mask(camera.height, camera.width, CV_8UC1), passer_mask(camera.height, camera.width, CV_8UC1);
+    cv::Mat shadow, shadowed;
     cv::RNG cv_rng(options.seed * 7919 + c);
     for (int k = 0; k < frames; ++k) {
       clutter.Step();  // blobs move on through dropped frames
+      passers.Step();
       if (dropped[k]) {
         if (progress) progress(++done, total);
         continue;
       }
       body.Place(joints[k], &capsules);
       caster.Render(capsules, &image);
+      // What can be seen of the walker: not what an occluder or a passer hides.
+      passers.Draw(&passer_mask);
+      const cv::Mat hidden = (image.depth_mm > objects_depth) | (passer_mask != 0);
+      image.part.setTo(BodyImage::kNoPart, hidden);
       const cv::Mat mask = image.Mask();
-      // Colour: room, clutter, shaded body, then the light and the sensor's noise.
+      // Colour: room (with the walker's shadow), clutter, shaded body, passers, then the
+      // light and the sensor's noise.
       clutter.Draw(&clutter_mask);
-      ComposeFrame(background, image, colours, clutter_mask, clutter, &colour);
+      scene.RenderShadow(caster, capsules, objects_depth, room, room_radius, &shadow);
+      const cv::Mat* room_now = &background;
+      if (options.scene.shadow) {
+        background.copyTo(shadowed);
+        cv::multiply(shadowed, cv::Scalar::all(scene.shadow_gain()), shadowed);
+        background.copyTo(shadowed, shadow == 0);
+        room_now = &shadowed;
+      }
+      ComposeFrame(*room_now, image, colours, clutter_mask, clutter, &colour);
+      for (int v = 0; v < colour.rows; ++v) {
+        const uint8_t* passer = passer_mask.ptr<uint8_t>(v);
+        cv::Vec3f* out = colour.ptr<cv::Vec3f>(v);
+        for (int u = 0; u < colour.cols; ++u) {
+          if (!passer[u]) continue;
+          const cv::Scalar& s = passers.Colour(passer[u]);
+          out[u] = cv::Vec3f(s[0], s[1], s[2]);
+        }
+      }
       colour *= LightingGain(frames > 1 ? static_cast<double>(k) / (frames - 1) : 0, deg.lighting_gain);
       if (deg.sensor_noise > 0) {
         cv_rng.fill(noise, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(deg.sensor_noise));
@@ -271,7 +330,12 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
       colour.convertTo(frame8, CV_8UC3);
       video.write(frame8);
       WriteImage(files.Mask(camera.name, k), mask);
-      WriteImage(files.ObservedMask(camera.name, k), DegradeMask(mask, clutter_mask, deg, &rng));
+      // The observed mask: degraded, with the clutter and passers, and the shadow that a
+      // segmentation without shadow removal keeps.
+      cv::Mat observed = DegradeMask(mask, options.scene.occluders > 0 ? (clutter_mask | passer_mask) : clutter_mask,
+                                     deg, &rng);
+      if (options.scene.shadow) observed.setTo(255, shadow);
+      WriteImage(files.ObservedMask(camera.name, k), observed);
       if (options.contact_sheet && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
         sheet_tiles[c].push_back(SheetTile(skeleton, camera, mask, joints[k]));
       }
@@ -290,8 +354,14 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     WriteImage(files.ContactSheet(), TileImages(tiles, labels, static_cast<int>(sheet_frames.size())));
   }
 
-  WriteFileAtomic(files.GroundTruth(), FormatGroundTruth(GroundTruth(skeleton, motion, source, cameras, options, body,
-                                                                     source_frames, joints, dropped)));
+  ClipGroundTruth truth =
+      GroundTruth(skeleton, motion, source, calibrated, options, body, source_frames, joints, dropped);
+  truth.rig = options.rig.kind;
+  truth.calibration_error = options.calibration_error;
+  truth.shadow = options.scene.shadow;
+  for (const SceneObject& o : scene.objects()) truth.occluders.push_back(o.kind);
+  if (options.calibration_error > 0) truth.render_cameras = cameras;
+  WriteFileAtomic(files.GroundTruth(), FormatGroundTruth(truth));
 
   folder.Commit();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

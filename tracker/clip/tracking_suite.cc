@@ -33,6 +33,12 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
     ClipOptions& o = clip.options;
     for (size_t i = 2; i < tokens.size(); i += 2) {
       const std::string option(tokens[i]);
+      if (option == "--bag" || option == "--shadow") {  // flags
+        (option == "--bag" ? o.body.bag : o.scene.shadow) = true;
+        clip.options_text += (clip.options_text.empty() ? "" : " ") + option;
+        --i;
+        continue;
+      }
       if (i + 1 >= tokens.size()) in.Fail("option " + option + " needs a value");
       const std::string_view value = tokens[i + 1];
       const std::string what = "the value of " + option;
@@ -49,9 +55,19 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
       else if (option == "--lighting") o.degradations.lighting_gain = in.ParseDouble(value, what);
       else if (option == "--drop-rate") o.degradations.drop_rate = in.ParseDouble(value, what);
       else if (option == "--width-scale") o.body.width_scale = in.ParseDouble(value, what);
+      else if (option == "--body-seed") o.body.body_seed = static_cast<uint64_t>(in.ParseInt(value, what));
+      else if (option == "--clothing") {
+        if (!ParseClothing(value, &o.body.clothing)) in.Fail(what + ": expected none, trousers, coat or skirt");
+      } else if (option == "--rig") {
+        if (!ParseRigKind(value, &o.rig.kind)) in.Fail(what + ": expected ring, surveillance or webcam");
+      } else if (option == "--occluders") o.scene.occluders = in.ParseInt(value, what);
+      else if (option == "--calibration-error") o.calibration_error = in.ParseDouble(value, what);
       else if (option == "--seed") o.seed = static_cast<uint64_t>(in.ParseInt(value, what));
       else in.Fail("unknown render option " + Quote(tokens[i]));
       clip.options_text += (clip.options_text.empty() ? "" : " ") + option + " " + std::string(value);
+    }
+    if (o.rig.kind == RigKind::kWebcam && clip.options_text.find("--cameras") == std::string::npos) {
+      o.rig.num_cameras = 1;  // the webcam rig's own
     }
     o.contact_sheet = false;
     std::string why;

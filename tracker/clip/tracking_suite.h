@@ -21,9 +21,10 @@ struct SuiteClip {
 };
 
 // InputError naming the file and line for a malformed line, an unknown or bad option, a
-// repeated name. Options understood: --cameras --width --height --fps --max-frames
-// --ring-radius --sensor-noise --mask-noise --holes --clutter --lighting --drop-rate
-// --width-scale --seed.
+// repeated name. Options understood (as `jgpm render` has them): --cameras --width
+// --height --fps --max-frames --ring-radius --sensor-noise --mask-noise --holes --clutter
+// --lighting --drop-rate --width-scale --seed --rig --body-seed --clothing --bag --shadow
+// --occluders --calibration-error (--bag and --shadow take no value).
 std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::string& source);
 std::vector<SuiteClip> ReadTrackingSuite(const std::filesystem::path& path);
 

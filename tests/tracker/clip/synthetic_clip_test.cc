@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -342,6 +343,89 @@ TEST(SyntheticClipTest, AnotherRendersPartialFolderIsLeftAlone) {
 
 // ground_truth.json reads back to what was written, and every malformed edit is refused
 // naming the file and the field.
+cv::Mat ReadMask(const fs::path& clip, const std::string& folder, const std::string& camera, int frame) {
+  return cv::imread((clip / folder / camera / cv::format("%06d.png", frame)).string(), cv::IMREAD_GRAYSCALE);
+}
+
+// Occluders and passers hide the walker, nothing else changes him: with them, each exact
+// mask is the same clip's mask without them minus what they cover, and they cover some.
+// The shadow darkens the room in the video and is in the observed masks, never the exact.
+TEST(SyntheticClipTest, OccludersHideTheWalkerAndTheShadowDarkensTheFloor) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions plain = SmallClip();
+  plain.max_frames = 40;
+  ClipOptions scene = plain;
+  scene.scene.occluders = 3;
+  scene.scene.shadow = true;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, plain, (dir.path() / "plain").string());
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, scene, (dir.path() / "scene").string());
+  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "scene/ground_truth.json");
+  EXPECT_TRUE(truth.shadow);
+  EXPECT_EQ(truth.occluders.size(), 3u);
+  int hidden = 0, shadow_px = 0;
+  double darker = 0;
+  for (const char* camera : {"cam0", "cam1"}) {
+    const cv::Mat room = cv::imread((dir.path() / "scene/background" / (std::string(camera) + ".png")).string());
+    const std::vector<cv::Mat> video = ReadVideo(dir.path() / "scene" / (std::string(camera) + ".avi"));
+    ASSERT_EQ(video.size(), 40u);
+    for (int k = 0; k < 40; ++k) {
+      const cv::Mat without = ReadMask(dir.path() / "plain", "masks", camera, k);
+      const cv::Mat with = ReadMask(dir.path() / "scene", "masks", camera, k);
+      const cv::Mat observed = ReadMask(dir.path() / "scene", "observed", camera, k);
+      EXPECT_EQ(cv::countNonZero(with & ~without), 0) << camera << " " << k;  // only hidden, never added
+      hidden += cv::countNonZero(without & ~with);
+      EXPECT_EQ(cv::countNonZero(with & ~observed), 0);  // observed: the mask, passers and the shadow
+      // Where the observed mask has more than the walker and the passers could explain,
+      // the shadow: the floor is darker there in the video than in the empty room.
+      const cv::Mat extra = observed & ~with;
+      cv::Mat grey_video, grey_room;
+      cv::cvtColor(video[k], grey_video, cv::COLOR_BGR2GRAY);
+      cv::cvtColor(room, grey_room, cv::COLOR_BGR2GRAY);
+      const int n = cv::countNonZero(extra);
+      if (n > 20) {
+        darker += (cv::mean(grey_room, extra)[0] - cv::mean(grey_video, extra)[0]) * n;
+        shadow_px += n;
+      }
+    }
+  }
+  std::printf("occluders and passers hid %d walker pixels; shadow and passers %d px, %.0f grey levels darker\n",
+              hidden, shadow_px, shadow_px ? darker / shadow_px : 0.0);
+  EXPECT_GT(hidden, 100);
+  EXPECT_GT(shadow_px, 500);
+  EXPECT_GT(darker / std::max(1, shadow_px), 20);
+}
+
+// With calibration error the clip's YAMLs (and its ground truth's cameras, the tracker's)
+// are a calibration's, and its render cameras the ones that made the images: joints
+// project into the exact masks through the render cameras.
+TEST(SyntheticClipTest, CalibrationErrorWritesOtherCamerasThanTheRenderingOnes) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.max_frames = 10;
+  options.calibration_error = 2;
+  const ClipSummary summary = RenderClip(walk.skeleton, walk.motion, walk.source, {}, options,
+                                         (dir.path() / "clip").string());
+  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip/ground_truth.json");
+  ASSERT_EQ(truth.render_cameras.size(), 2u);
+  const std::vector<Camera> ring = DefaultRig([&] {
+    std::vector<Eigen::Matrix3Xd> joints;
+    for (const ClipFrame& f : truth.frames) joints.push_back(f.joints_mm);
+    return joints;
+  }(), options.rig);
+  for (int c = 0; c < 2; ++c) {
+    const Camera written = ReadCameraYaml((dir.path() / "clip" / (truth.cameras[c].name + ".yaml")).string()).camera;
+    EXPECT_NEAR(written.fx, truth.cameras[c].fx, 1e-9);
+    EXPECT_NEAR(summary.cameras[c].fx, written.fx, 1e-9);
+    EXPECT_NE(written.fx, truth.render_cameras[c].fx);
+    // Rendered by the ring (fitted here to the truth's joints, written to 0.01 mm).
+    EXPECT_NEAR(truth.render_cameras[c].fx, ring[c].fx, 1e-5 * ring[c].fx);
+    EXPECT_GT((written.CentreInWorld() - truth.render_cameras[c].CentreInWorld()).norm(), 0.1);
+    EXPECT_LE((written.CentreInWorld() - truth.render_cameras[c].CentreInWorld()).norm(), 60 + 1e-6);
+  }
+}
+
 TEST(ClipFormat, GroundTruthRoundTripAndMalformedInput) {
   const Trial& walk = Walk();
   test::TempDir dir;
@@ -352,6 +436,36 @@ TEST(ClipFormat, GroundTruthRoundTripAndMalformedInput) {
   const std::string text = ReadTextFile(dir.path() / "clip/ground_truth.json", "truth");
   const ClipGroundTruth truth = ParseGroundTruth(text, "gt.json");
   EXPECT_EQ(FormatGroundTruth(truth), text);
+  EXPECT_EQ(text.find("\"scene\""), std::string::npos);  // today's clips: no scene, no render cameras
+  EXPECT_EQ(text.find("render_cameras"), std::string::npos);
+  // A clip of another world round-trips too, and its new fields are checked.
+  ClipOptions other = options;
+  other.rig.kind = RigKind::kSurveillance;
+  other.rig.width = 160;
+  other.rig.height = 120;
+  other.body.body_seed = 4;
+  other.body.clothing = Clothing::kSkirt;
+  other.body.bag = true;
+  other.scene.shadow = true;
+  other.scene.occluders = 1;
+  other.calibration_error = 1;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, other, (dir.path() / "other").string());
+  const std::string other_text = ReadTextFile(dir.path() / "other/ground_truth.json", "truth");
+  const ClipGroundTruth other_truth = ParseGroundTruth(other_text, "gt.json");
+  EXPECT_EQ(FormatGroundTruth(other_truth), other_text);
+  EXPECT_EQ(other_truth.rig, RigKind::kSurveillance);
+  EXPECT_EQ(other_truth.body.clothing, Clothing::kSkirt);
+  EXPECT_TRUE(other_truth.body.bag);
+  EXPECT_EQ(other_truth.body.body_seed, 4u);
+  EXPECT_EQ(other_truth.render_cameras.size(), 2u);
+  for (const auto& [from, to, phrase] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"\"rig\": \"surveillance\"", "\"rig\": \"blimp\"", "scene.rig"},
+           {"\"clothing\": \"skirt\"", "\"clothing\": \"cape\"", "body_model.clothing"},
+           {"\"calibration_error\": 1.0", "\"calibration_error\": -1.0", "scene.calibration_error"},
+           {"\"render_cameras\": [", "\"render_cameras\": [{},", "render_cameras"}}) {
+    SCOPED_TRACE(from);
+    test::ExpectInputError([&] { ParseGroundTruth(test::Replace(other_text, from, to), "gt.json"); }, {"gt.json", phrase});
+  }
   EXPECT_EQ(truth.cameras.size(), 2u);
   EXPECT_EQ(truth.joint_names.size(), walk.skeleton.bones.size());
   const struct {

@@ -2,6 +2,8 @@
 // each malformed line is refused naming the file, the line and what was expected.
 #include "tracker/clip/tracking_suite.h"
 
+#include <utility>
+
 #include <gtest/gtest.h>
 
 #include "test_support.h"
@@ -27,6 +29,63 @@ TEST(TrackingSuite, ParsesNamesTrialsAndOptions) {
   EXPECT_DOUBLE_EQ(clips[1].options.degradations.drop_rate, 0.1);
   EXPECT_EQ(clips[1].options.seed, 2u);
   EXPECT_EQ(clips[1].options_text, "--cameras 2 --holes 3 --drop-rate 0.1 --seed 2");
+}
+
+TEST(TrackingSuite, RealismOptionsAndFlags) {
+  const std::vector<SuiteClip> clips = ParseTrackingSuite(
+      "w 35_16 --rig webcam --body-seed 13 --clothing coat --bag --shadow --occluders 2 --calibration-error 1.5\n"
+      "s 07_01 --rig surveillance --cameras 3 --shadow\n",
+      "s.txt");
+  ASSERT_EQ(clips.size(), 2u);
+  const ClipOptions& w = clips[0].options;
+  EXPECT_EQ(w.rig.kind, RigKind::kWebcam);
+  EXPECT_EQ(w.rig.num_cameras, 1);  // the webcam rig's own
+  EXPECT_EQ(w.body.body_seed, 13u);
+  EXPECT_EQ(w.body.clothing, Clothing::kCoat);
+  EXPECT_TRUE(w.body.bag);
+  EXPECT_TRUE(w.scene.shadow);
+  EXPECT_EQ(w.scene.occluders, 2);
+  EXPECT_DOUBLE_EQ(w.calibration_error, 1.5);
+  EXPECT_EQ(clips[0].options_text,
+            "--rig webcam --body-seed 13 --clothing coat --bag --shadow --occluders 2 --calibration-error 1.5");
+  EXPECT_EQ(clips[1].options.rig.kind, RigKind::kSurveillance);
+  EXPECT_EQ(clips[1].options.rig.num_cameras, 3);
+  EXPECT_FALSE(clips[1].options.body.bag);
+  EXPECT_TRUE(clips[1].options.scene.shadow);
+  for (const auto& [line, phrase] : std::vector<std::pair<std::string, std::string>>{
+           {"x 07_01 --rig blimp\n", "expected ring, surveillance or webcam"},
+           {"x 07_01 --clothing cape\n", "expected none, trousers, coat or skirt"},
+           {"x 07_01 --rig webcam --cameras 2\n", "one camera"},
+           {"x 07_01 --occluders 9\n", "occluders"},
+           {"x 07_01 --calibration-error -1\n", "calibration error"}}) {
+    test::ExpectInputError([&] { ParseTrackingSuite(line, "s.txt"); }, {"s.txt:1", phrase});
+  }
+}
+
+TEST(TrackingSuite, TheShippedSuitesParse) {
+  for (const char* name : {"realism_suite.txt", "realism_tuning.txt"}) {
+    const std::vector<SuiteClip> clips =
+        ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts" / name);
+    EXPECT_GE(clips.size(), 5u) << name;
+  }
+  // The realism suite: every factor alone, and all at once, on trials that start and turn.
+  const std::vector<SuiteClip> realism =
+      ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts/realism_suite.txt");
+  bool body = false, clothing = false, shadow = false, occluders = false, calibration = false, rig = false,
+       subject131 = false, all = false;
+  for (const SuiteClip& c : realism) {
+    const ClipOptions& o = c.options;
+    body |= o.body.body_seed > 0;
+    clothing |= o.body.clothing != Clothing::kNone;
+    shadow |= o.scene.shadow;
+    occluders |= o.scene.occluders > 0;
+    calibration |= o.calibration_error > 0;
+    rig |= o.rig.kind != RigKind::kRing;
+    subject131 |= c.trial.subject == "131";
+    all |= o.body.body_seed > 0 && o.body.clothing != Clothing::kNone && o.scene.shadow && o.scene.occluders > 0 &&
+           o.calibration_error > 0 && o.rig.kind != RigKind::kRing;
+  }
+  EXPECT_TRUE(body && clothing && shadow && occluders && calibration && rig && subject131 && all);
 }
 
 TEST(TrackingSuite, TheShippedSuiteParses) {
