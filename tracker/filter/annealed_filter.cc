@@ -125,7 +125,11 @@ std::vector<double> AnnealedFilter::Weights(const std::vector<double>& cost, con
 
 double AnnealedFilter::FindBeta(const std::vector<double>& cost, const std::vector<double>& log_prior,
                                 double survival) {
-  if (EffectiveFraction(Weights(cost, log_prior, 0)) <= survival) return 0;
+  if (EffectiveFraction(Weights(cost, log_prior, 0)) <= survival) {
+    // No beta reaches the target (the prior alone is below it): the likelihood's own beta,
+    // so that the layer still weighs the images.
+    return FindBeta(cost, std::vector<double>(cost.size(), 0.0), survival);
+  }
   double low = 0, high = 1;
   while (EffectiveFraction(Weights(cost, log_prior, high)) > survival && high < 1e9) {
     low = high;
@@ -151,19 +155,74 @@ std::vector<int> AnnealedFilter::Resample(const std::vector<double>& weights, in
   return chosen;
 }
 
+std::vector<bool> AnnealedFilter::DominantMode(const std::vector<double>& values, const std::vector<double>& weights,
+                                               double period) {
+  const int n = static_cast<int>(values.size());
+  auto mode_about = [&](int reference, std::vector<bool>* in) {
+    double weight = 0;
+    in->assign(n, false);
+    for (int i = 0; i < n; ++i) {
+      if (std::abs(std::remainder(values[i] - values[reference], period)) <= period / 4) {
+        (*in)[i] = true;
+        weight += weights[i];
+      }
+    }
+    return weight;
+  };
+  const int best = static_cast<int>(std::max_element(weights.begin(), weights.end()) - weights.begin());
+  std::vector<bool> near, far;
+  const double near_weight = mode_about(best, &near);
+  int other = -1;  // the heaviest particle of the other half
+  for (int i = 0; i < n; ++i)
+    if (!near[i] && (other < 0 || weights[i] > weights[other])) other = i;
+  if (other >= 0 && mode_about(other, &far) > near_weight) return far;
+  return near;
+}
+
+double AnnealedFilter::PeriodicMean(const std::vector<double>& values, const std::vector<double>& weights,
+                                    double period) {
+  const std::vector<bool> mode = DominantMode(values, weights, period);
+  int reference = -1;
+  for (size_t i = 0; i < values.size(); ++i)
+    if (mode[i] && (reference < 0 || weights[i] > weights[reference])) reference = static_cast<int>(i);
+  double sum = 0, total = 0;
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!mode[i]) continue;
+    sum += weights[i] * (values[reference] + std::remainder(values[i] - values[reference], period));
+    total += weights[i];
+  }
+  return total > 0 ? sum / total : values[reference];
+}
+
 Eigen::VectorXd AnnealedFilter::WeightedMean(const std::vector<double>& weights) const {
   const int d = model_.Dimension();
-  const int best = static_cast<int>(std::max_element(weights.begin(), weights.end()) - weights.begin());
+  const int n = static_cast<int>(particles_.rows());
+  // The particles of the dominant mode of the first coordinate, when it is periodic (the
+  // walking phase: half a cycle on is the mirror pose, and the average of the two a pose
+  // with the legs crossed), carry the estimate; the others have weight 0 in it.
+  std::vector<int> chosen;
+  std::vector<double> column(n);
+  if (model_.Period(0) > 0) {
+    for (int i = 0; i < n; ++i) column[i] = particles_(i, 0);
+    const std::vector<bool> mode = DominantMode(column, weights, model_.Period(0));
+    for (int i = 0; i < n; ++i)
+      if (mode[i]) chosen.push_back(i);
+  } else {
+    for (int i = 0; i < n; ++i) chosen.push_back(i);
+  }
+  std::vector<double> w(chosen.size()), values(chosen.size());
+  double total = 0;
+  for (size_t j = 0; j < chosen.size(); ++j) total += (w[j] = weights[chosen[j]]);
+  for (double& x : w) x = total > 0 ? x / total : 1.0 / w.size();
   Eigen::VectorXd mean = Eigen::VectorXd::Zero(d);
   for (int k = 0; k < d; ++k) {
-    const double period = model_.Period(k), reference = particles_(best, k);
-    double sum = 0;
-    for (int i = 0; i < particles_.rows(); ++i) {
-      double value = particles_(i, k);
-      if (period > 0) value = reference + std::remainder(value - reference, period);
-      sum += weights[i] * value;
+    for (size_t j = 0; j < chosen.size(); ++j) values[j] = particles_(chosen[j], k);
+    const double period = model_.Period(k);
+    if (period > 0) {
+      mean[k] = PeriodicMean(values, w, period);
+    } else {
+      for (size_t j = 0; j < chosen.size(); ++j) mean[k] += w[j] * values[j];
     }
-    mean[k] = sum;
   }
   model_.Normalise(mean.data());
   return mean;

@@ -11,8 +11,10 @@
 // L layers has been weighed by p(x|M) in all. Applied whole in every layer, it would count
 // L times (seen: a kernel density varying by 1.3 nats over the manifold then outweighed the
 // silhouettes, 81 mm against 35 mm without it on 20 frames of 07_01).
-// The estimate is the last layer's weighted mean (periodic coordinates averaged about the
-// best particle, so a wrap does not average to the middle). Every particle's random
+// The estimate is the last layer's weighted mean over the dominant mode of the first
+// coordinate when it is periodic (the walking phase: particles half a cycle apart are
+// mirror poses, and their average one with the legs crossed); periodic coordinates are
+// averaged about the best particle, so a wrap does not average to the middle. Every particle's random
 // numbers come from (seed, frame, layer, index), so results do not depend on the threads.
 #pragma once
 
@@ -80,10 +82,17 @@ class AnnealedFilter {
   void Body(const double* state, Eigen::Matrix3Xd* joints, std::vector<Capsule>* capsules) const;
 
   // Weights exp(-beta cost + log_prior) normalised, and the beta giving an effective sample
-  // size of `survival` (bisection; 0 when even the prior alone is below it). Exposed for
-  // tests.
+  // size of `survival` (bisection; when the prior alone is already below it, the beta the
+  // likelihood alone would need, so that no layer ignores the images). Exposed for tests.
   static double FindBeta(const std::vector<double>& cost, const std::vector<double>& log_prior, double survival);
   static std::vector<double> Weights(const std::vector<double>& cost, const std::vector<double>& log_prior, double beta);
+  // The dominant mode of a periodic coordinate: the particles within a quarter period of
+  // the heaviest one, or of the heaviest of the others when those weigh more.
+  static std::vector<bool> DominantMode(const std::vector<double>& values, const std::vector<double>& weights,
+                                        double period);
+  // The weighted mean of a periodic coordinate over its dominant mode, about its heaviest
+  // particle (not the average of two modes half a period apart).
+  static double PeriodicMean(const std::vector<double>& values, const std::vector<double>& weights, double period);
   // Systematic resampling: `count` indices drawn in proportion to `weights`, from one
   // uniform offset.
   static std::vector<int> Resample(const std::vector<double>& weights, int count, double offset);

@@ -13,7 +13,13 @@ CameraObservation::CameraObservation(const cv::Mat& mask, cv::Rect region, doubl
   const cv::Rect image(0, 0, mask_.cols, mask_.rows);
   region_ = region & image;
   foreground_ = cv::countNonZero(mask_);
-  if (region_.empty()) return;
+  if (region_.empty()) {
+    // Nowhere to look in this image: blank packed masks of its size (a body drawn here
+    // explains nothing, and is counted against nothing).
+    region_bits_ = BitMask(mask_.cols, mask_.rows);
+    region_grown_ = BitMask(mask_.cols, mask_.rows);
+    return;
+  }
   const int pad = static_cast<int>(std::ceil(truncation_px)) + 2;
   window_ = cv::Rect(region_.x - pad, region_.y - pad, region_.width + 2 * pad, region_.height + 2 * pad) & image;
   if (max_hole_px > 0) {

@@ -110,7 +110,7 @@ PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const E
     for (size_t b = 0; b <= blocks_.size(); ++b) {  // the last block is the placement
       pool_->For(n, [&](int begin, int end, int worker) {
         for (int i = begin; i < end; ++i) {
-          Random random(static_cast<uint64_t>(frame) * 7919 + 17, round, b, i);
+          Random random(options_.seed, frame, 64 * round + b, i);
           poses[i] = current;
           for (int k = 0; k < 4; ++k) places[i][k] = placement[k];
           if (b < blocks_.size()) {

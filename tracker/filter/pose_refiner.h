@@ -22,6 +22,7 @@
 // constrain, so it is off by default (`jgpm track --adapt posture` turns it on).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,7 @@ struct RefinementOptions {
   double offset_rate = 0.15;   // how fast the running posture offset follows each frame's
   bool adapt_posture = false;  // the posture offset as a per-person state (above)
   PostureStateOptions posture;
+  uint64_t seed = 1;           // the search's random numbers (the tracker's seed)
 
   bool Check(std::string* why) const;
 };

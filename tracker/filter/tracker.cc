@@ -95,6 +95,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
   if (options.refinement.enabled && options.space == StateSpace::kModel) {
     RefinementOptions refinement = options.refinement;
     refinement.refine_size = refinement.refine_size && !options.known_size;
+    refinement.seed = options.annealing.seed;  // one seed for the run
     refiner_ = std::make_unique<PoseRefiner>(model, likelihood_, body_, refinement, &pool_);
   }
   // The model's height at size 1, over poses spread by the prior.
@@ -163,9 +164,9 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const
   return true;
 }
 
-void Tracker::StartAt(const InitialGuess& guess) {
+void Tracker::StartAt(const InitialGuess& guess, int frame) {
   if (refiner_) refiner_->Reset();
-  filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, 0);
+  filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, frame);
   started_ = true;
   fresh_ = true;
   // A start that knows the pose (--init truth) knows which leg is forward.
@@ -177,7 +178,7 @@ void Tracker::StartAt(const InitialGuess& guess) {
 bool Tracker::StartFromFrames(const std::vector<Frame>& frames) {
   InitialGuess guess;
   if (!Guess(frames, &guess)) return false;
-  StartAt(guess);
+  StartAt(guess, frames.front().index);
   // Where to look at the start: the first frame's blobs.
   for (const Frame& f : frames) {
     if (f.dropped) continue;

@@ -106,9 +106,12 @@ class Tracker {
   const BodyModel& body() const { return body_; }
   const SilhouetteLikelihood& likelihood() const { return likelihood_; }
   const TrackerOptions& options() const { return options_; }
+  const AnnealedFilter& filter() const { return *filter_; }
 
-  // Starts from a known guess (e.g. `--init truth`) at the next frame.
-  void StartAt(const InitialGuess& guess);
+  // Starts from a known guess (e.g. `--init truth`) at the next frame; `frame` (the first
+  // frame tracked from it) keys the particles' random numbers, so that each restart draws
+  // its own.
+  void StartAt(const InitialGuess& guess, int frame = 0);
   // Looks at frames (the first few of a source) for the person; starts at the next frame
   // when found. False when nobody is seen in any of them.
   bool StartFromFrames(const std::vector<Frame>& frames);

@@ -35,7 +35,14 @@ void LatentStateModel::Sample(const InitialGuess& guess, Random* r, double* s) c
 void LatentStateModel::Predict(double dt, Random* r, double* s) const {
   const double k = std::sqrt(std::max(dt, 0.0) * 30);
   Eigen::Vector3d x(s[0], s[1], s[2]);
-  if (model_.HasDynamics()) x = model_.NextLatent(x, nullptr);
+  if (model_.HasDynamics()) {
+    // One dynamics step per 1/30 s: whole steps, then the fraction of the next.
+    const double steps = std::max(dt, 0.0) * kStepsPerSecond;
+    const int whole = static_cast<int>(std::floor(steps + 1e-9));
+    for (int i = 0; i < whole; ++i) x = model_.NextLatent(x, nullptr);
+    const double fraction = steps - whole;
+    if (fraction > 1e-9) x += fraction * (model_.NextLatent(x, nullptr) - x);
+  }
   for (int d = 0; d < 3; ++d) s[d] = x[d] + k * d_.latent_noise * step_ * r->Normal();
   s[3] += s[6] * dt * std::sin(s[5]) + k * d_.root_noise_mm * r->Normal();
   s[4] += s[6] * dt * std::cos(s[5]) + k * d_.root_noise_mm * r->Normal();

@@ -2,10 +2,11 @@
 // LL-GPDM, PCA): a point of the model's latent space plus the shared placement
 // (tracker/state/state_model.h), with the walking speed as its rate.
 //
-// Dynamics, per frame: GPDM family, the latent point moves by the learned dynamics' mean
-// step (one step per frame: the models learned 30 poses per ~1.1 s cycle, about a frame at
-// 30 fps) plus noise of half the mean training step; the others, a random walk of one mean
-// step. Speed and heading are slow random walks; the root moves at the speed along the
+// Dynamics, per frame of dt seconds: GPDM family, the latent point moves by the learned
+// dynamics' mean step once per 1/30 s (the models learned 30 poses per ~1.1 s cycle, about
+// a frame at 30 fps): whole steps, then the fraction of the next, so a dropped frame or a
+// 15 fps source advances as far as the time passed) plus noise; the others, a random walk.
+// Noise: half the mean training step per 1/30 s, growing with sqrt(dt). Speed and heading are slow random walks; the root moves at the speed along the
 // heading. Assumed: one person walking forwards on a flat floor.
 #pragma once
 
@@ -30,6 +31,8 @@ struct LatentDynamics {
 
 class LatentStateModel : public StateModel {
  public:
+  static constexpr double kStepsPerSecond = 30;  // dynamics steps per second of the walk
+
   // `model` and `table` (built from it) must outlive this.
   LatentStateModel(const GaitModel& model, const PoseTable& table, const LatentDynamics& dynamics = {});
 

@@ -39,6 +39,7 @@ void ManifoldStateModel::Sample(const InitialGuess& guess, Random* r, double* s)
   s[4] = guess.floor_mm.y() + guess.floor_std_mm * r->Normal();
   s[5] = guess.heading_std_rad >= std::numbers::pi ? (2 * r->Uniform() - 1) * std::numbers::pi : guess.heading_rad + guess.heading_std_rad * r->Normal();
   s[7] = guess.size + guess.size_std * r->Normal();
+  s[6] = 1;  // a placeholder for Normalise, which reads every coordinate; set below
   Normalise(s);
   // A walker covers a stride per cycle: the speed seen at the start sets each particle's
   // cadence for its own stride, so its root keeps pace from the first frame.

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -154,14 +155,33 @@ TEST(AnnealedFilter, FindBetaHitsTheSurvivalRate) {
   const double beta_small = AnnealedFilter::FindBeta(small, none, 0.5);
   const double beta_large = AnnealedFilter::FindBeta(large, none, 0.5);
   EXPECT_NEAR(beta_small / beta_large, 100, 0.5);
-  // The prior alone already below the target: no annealing can raise it, beta 0.
+  // The prior alone already below the target, so no beta reaches it: the images still
+  // count, at the beta the likelihood alone would have (it was 0, and the layer ignored
+  // them).
   std::vector<double> wild_prior(n);
   for (int i = 0; i < n; ++i) {
     Random random(8, 0, 0, i);
     wild_prior[i] = 4 * random.Normal();
   }
   ASSERT_LT(EssFraction(AnnealedFilter::Weights(none, wild_prior, 0)), 0.5);
-  EXPECT_EQ(AnnealedFilter::FindBeta(small, wild_prior, 0.5), 0.0);
+  EXPECT_GT(AnnealedFilter::FindBeta(small, wild_prior, 0.5), 0.0);
+  EXPECT_EQ(AnnealedFilter::FindBeta(small, wild_prior, 0.5), beta_small);
+}
+
+// The periodic weighted mean, by hand: two modes half a period apart average to the
+// heavier one's mean, not to the pose between them; a wrap does not average to the middle.
+TEST(AnnealedFilter, PeriodicMeanTakesTheDominantMode) {
+  // Phases 0.1 and 0.12 (weights 0.3, 0.3) against their mirror 0.6 (0.4): 0.11.
+  EXPECT_NEAR(AnnealedFilter::PeriodicMean({0.1, 0.12, 0.6}, {0.3, 0.3, 0.4}, 1.0), 0.11, 1e-12);
+  // The heaviest particle alone is not the mode: 0.6 (0.4) loses to 0.1 + 0.12 (0.6).
+  EXPECT_EQ(AnnealedFilter::DominantMode({0.1, 0.12, 0.6}, {0.3, 0.3, 0.4}, 1.0), (std::vector<bool>{true, true, false}));
+  // Across the wrap: 0.95 and 0.05 average to 0.0 (as 1.0), not 0.5.
+  EXPECT_NEAR(std::remainder(AnnealedFilter::PeriodicMean({0.95, 0.05}, {0.5, 0.5}, 1.0), 1.0), 0.0, 1e-12);
+  // A heading: 170 and -170 degrees (weights 1, 3) average to -175.
+  const double deg = std::numbers::pi / 180;
+  EXPECT_NEAR(AnnealedFilter::PeriodicMean({170 * deg, -170 * deg}, {1, 3}, 2 * std::numbers::pi), -175 * deg, 1e-12);
+  // One mode: the plain weighted mean.
+  EXPECT_NEAR(AnnealedFilter::PeriodicMean({0.2, 0.3, 0.4}, {1, 1, 2}, 1.0), 0.325, 1e-12);
 }
 
 TEST(AnnealedFilter, SystematicResamplingKeepsCountsWithinOneOfNw) {

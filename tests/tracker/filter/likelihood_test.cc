@@ -146,6 +146,30 @@ TEST(Likelihood, LowestAtTheTruthAndGrowingAwayFromIt) {
   EXPECT_GT(cost(collapsed), best + 0.1);
 }
 
+// A region wholly outside the image (the person expected beyond its border) while the body
+// is drawn inside it: the packed region masks have the image's size (they had none, and
+// the counts read past them) and the body costs what it costs against no foreground.
+TEST(Likelihood, ARegionOutsideTheImageIsAnEmptyRegion) {
+  const Scene& s = Walk();
+  const SilhouetteLikelihood likelihood(s.cameras);
+  const Eigen::Matrix3Xd truth = Kinematics(s.skeleton).Compute(s.motion.Frame(120));
+  std::vector<CameraObservation> observed = Observe(s, likelihood, 120);
+  const cv::Mat mask = observed[0].mask().clone();
+  observed[0] = likelihood.Observe(mask, {1000, 1000, 50, 50});
+  ASSERT_EQ(observed[0].region_bits().width(), 320);
+  ASSERT_EQ(observed[0].region_bits_grown().height(), 240);
+  EXPECT_EQ(observed[0].region_count(), 0);
+  std::vector<CameraObservation> blank = observed;
+  blank[0] = likelihood.Observe(cv::Mat::zeros(240, 320, CV_8UC1), {0, 0, 320, 240});
+  SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+  std::vector<CameraScore> nowhere, nothing;
+  likelihood.Cost(Body(s, truth), observed, &workspace, &nowhere);
+  likelihood.Cost(Body(s, truth), blank, &workspace, &nothing);
+  EXPECT_GT(nowhere[0].model_px, 500);
+  EXPECT_EQ(nowhere[0].overlap_px, 0);
+  EXPECT_EQ(nowhere[0].cost, nothing[0].cost);
+}
+
 TEST(Likelihood, EmptyMasksAndNothingDrawnAreFinite) {
   const Scene& s = Walk();
   const SilhouetteLikelihood likelihood(s.cameras);

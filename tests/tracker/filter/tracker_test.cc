@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/base/text_reader.h"
 #include "io/gait/gait_dataset.h"
@@ -222,6 +223,60 @@ TEST(Tracker, OneSeedGivesTheSameResultWithAnyThreads) {
   other.tracker.annealing.seed = 8;
   RunTrackJob(other);
   EXPECT_NE(ReadBytes(out.path() / "one" / "poses.json"), ReadBytes(out.path() / "other" / "poses.json"));
+}
+
+// The clip's frame k with its observed masks, as a frame source gives it.
+Frame ClipFrameAt(const ClipGroundTruth& truth, const fs::path& clip, int k) {
+  Frame frame;
+  frame.index = k;
+  frame.time_s = truth.frames[k].time_s;
+  for (const Camera& c : truth.cameras) {
+    frame.masks.push_back(cv::imread((clip / "observed" / c.name / ClipFrameName(k)).string(), cv::IMREAD_GRAYSCALE));
+  }
+  return frame;
+}
+
+// A restart draws its own particles (every start used to draw from frame 0's random
+// numbers, so a tracker restarting in the same place made the same guesses again).
+TEST(Tracker, EachStartDrawsItsOwnParticles) {
+  const Fixture& f = Shared();
+  const auto model = ReadModelFile(f.model);
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  TrackerOptions options;
+  options.annealing.particles = 50;
+  Tracker a(*model, truth.cameras, options), b(*model, truth.cameras, options);
+  const Frame frame = ClipFrameAt(truth, f.clip, 5);
+  Frame later = frame;
+  later.index = 9;
+  ASSERT_TRUE(a.StartFromFrames({frame}));
+  ASSERT_TRUE(b.StartFromFrames({frame}));
+  EXPECT_EQ(a.filter().particles(), b.filter().particles());  // same frame, same seed: same draws
+  ASSERT_TRUE(b.StartFromFrames({later}));
+  EXPECT_NE(a.filter().particles(), b.filter().particles());
+}
+
+// The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).
+TEST(Tracker, TheSeedReachesTheRefinement) {
+  const Fixture& f = Shared();
+  const auto model = ReadModelFile(f.model);
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  const Frame frame = ClipFrameAt(truth, f.clip, 5);
+  const SilhouetteLikelihood likelihood(truth.cameras);
+  const BodyModel body(model->skeleton(), {}, "model");
+  ThreadPool pool(1);
+  std::vector<CameraObservation> observed;
+  for (const cv::Mat& mask : frame.masks) observed.push_back(likelihood.Observe(mask, {0, 0, mask.cols, mask.rows}));
+  const Eigen::Vector3d latent = model->latent().row(7).transpose();
+  const Eigen::VectorXd pose = model->MeanPoses(latent.transpose()).row(0).transpose();
+  const Eigen::Vector3d root = truth.frames[5].joints_mm.col(0);
+  auto refine = [&](uint64_t seed) {
+    RefinementOptions options;
+    options.seed = seed;
+    PoseRefiner refiner(*model, likelihood, body, options, &pool);
+    return refiner.Refine(pose, latent, root.x(), root.z(), 0, 1, observed, 5).pose_deg;
+  };
+  EXPECT_EQ(refine(1), refine(1));
+  EXPECT_NE(refine(1), refine(2));
 }
 
 }  // namespace
