@@ -67,10 +67,10 @@ void AnnealedFilter::Predict(double dt, int frame) {
 void AnnealedFilter::Body(const double* state, Eigen::Matrix3Xd* joints, std::vector<Capsule>* capsules) const {
   model_.Evaluate(state, joints);
   body_.Place(*joints, capsules);
-  const double size = state[model_.placement().size];
+  const double scale = model_.RadiusScale(state);
   for (Capsule& c : *capsules) {
-    c.radius_from_mm *= size;
-    c.radius_to_mm *= size;
+    c.radius_from_mm *= scale;
+    c.radius_to_mm *= scale;
   }
 }
 
@@ -88,7 +88,6 @@ void AnnealedFilter::Evaluate(std::vector<double>* cost, std::vector<double>* lo
   const int n = static_cast<int>(particles_.rows());
   cost->resize(n);
   log_prior->resize(n);
-  const double size_index = model_.placement().size;
   pool_->For(n, [&](int begin, int end, int worker) {
     Scratch& s = scratch_[worker];
     for (int i = begin; i < end; ++i) {
@@ -96,10 +95,10 @@ void AnnealedFilter::Evaluate(std::vector<double>* cost, std::vector<double>* lo
       const double prior = model_.Evaluate(state, &s.joints);
       (*log_prior)[i] = options_.latent_prior ? prior : 0.0;
       body_.Place(s.joints, &s.capsules);
-      const double size = state[static_cast<int>(size_index)];
+      const double scale = model_.RadiusScale(state);
       for (Capsule& c : s.capsules) {
-        c.radius_from_mm *= size;
-        c.radius_to_mm *= size;
+        c.radius_from_mm *= scale;
+        c.radius_to_mm *= scale;
       }
       (*cost)[i] = likelihood_.Cost(s.capsules, observations, &s.workspace);
     }

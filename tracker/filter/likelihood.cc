@@ -114,7 +114,15 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     } else {
       score.outline = score.observed_px > 0 ? 1.0 : 0.0;  // nothing drawn: no outline near the person
     }
-    score.cost = score.area + options_.outline_weight * score.outline;
+    score.raw = score.area + options_.outline_weight * score.outline;
+    const double bound = 2 + options_.outline_weight;
+    if (!options_.bound_cameras) {
+      score.cost = score.raw;
+    } else if (model == 0 && score.observed_px >= options_.min_foreground_px) {
+      score.cost = bound;  // the body left a view that sees someone where it was expected
+    } else {
+      score.cost = bound * -std::expm1(-score.raw / bound);
+    }
     total += score.cost;
     if (scores) (*scores)[c] = score;
   }

@@ -12,7 +12,20 @@
 //           foreground pixel, truncated and divided by truncation_px: a wide, smooth basin
 //           where the overlap is flat (a limb just beside the mask), robust to holes and
 //           clutter because it saturates;
-//   cost    area + outline_weight * outline.
+//   raw     area + outline_weight * outline;
+//   cost    B (1 - exp(-raw / B)): the raw cost where it is small, never more than B. A camera is a mixture of a working view and a
+//           failed one (its segmentation lost the person, a shadow or a coat took over,
+//           its calibration is off, something hides the person): the failed view explains
+//           any mask at a fixed cost, so no camera's evidence is worth more than that and
+//           one camera cannot decide a frame against the others (Sigal's HumanEva
+//           baseline bounds each camera's term; a mask the body misses entirely, which
+//           raw costs 10-20 against a good view's 0.1-0.5, now costs B).
+//           And a body cannot lower its cost by leaving a camera's view: drawing nothing
+//           where the camera sees foreground costs B, as much as drawing it anywhere else.
+// B's rule: a body drawn where the person is not, beside a person of its size, has raw
+// cost 2 + outline_weight (every body pixel outside the mask, every mask pixel
+// unexplained, the outline saturated): that is the most a view can say against a
+// hypothesis, so B = 2 + outline_weight.
 // Cameras add their costs (independent views multiply likelihoods); the filter weighs a
 // particle by exp(-beta * cost) with beta set by annealing.
 #pragma once
@@ -36,6 +49,7 @@ struct LikelihoodOptions {
   double outline_step_px = 3;      // outline samples at most this far apart
   double min_foreground_px = 150;  // the area term's normaliser when little is seen
   int max_hole_px = 60;            // enclosed holes in a mask smaller than this are filled
+  bool bound_cameras = true;       // each camera's cost at most 2 + outline_weight (above)
 
   bool Check(std::string* why) const;
 };
@@ -49,7 +63,8 @@ struct CameraScore {
   int unexplained_px = 0;  // |(O n R) \ grow(S)|
   double area = 0;
   double outline = 0;
-  double cost = 0;
+  double raw = 0;        // area + outline_weight * outline
+  double cost = 0;       // raw, bounded (the camera's part of the total)
   double Iou() const;    // overlap / union (0 when both are empty)
 };
 

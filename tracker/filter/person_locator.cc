@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -12,6 +13,103 @@ double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Where a standing adult's head is when the feet cannot be seen (mm): the mean adult
+// height, the person's own unknown.
+constexpr double kAdultHeightMm = 1700;
+
+// The mask's blobs, with the pieces of one body joined: a blob above another, overlapping
+// it by half the narrower one's width, with a gap under a quarter of their joint height
+// (an occluder across the body, a belt of the same colour as the background) is the same
+// person. `labels`: CV_32S, 0 background, 1..n-1 the joined blobs; areas and boxes per
+// label (index 0 unused). Returns n.
+int BodyBlobs(const cv::Mat& mask, cv::Mat* labels, std::vector<int>* areas, std::vector<cv::Rect>* boxes) {
+  cv::Mat stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask != 0, *labels, stats, centroids, 8, CV_32S);
+  std::vector<int> root(n);
+  for (int l = 0; l < n; ++l) root[l] = l;
+  const auto find = [&](int l) {
+    while (root[l] != l) l = root[l] = root[root[l]];
+    return l;
+  };
+  auto box_of = [&](int l) {
+    return cv::Rect(stats.at<int>(l, cv::CC_STAT_LEFT), stats.at<int>(l, cv::CC_STAT_TOP),
+                    stats.at<int>(l, cv::CC_STAT_WIDTH), stats.at<int>(l, cv::CC_STAT_HEIGHT));
+  };
+  for (int a = 1; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      const cv::Rect p = box_of(a), q = box_of(b);
+      const int overlap = std::min(p.x + p.width, q.x + q.width) - std::max(p.x, q.x);
+      const int gap = std::max(p.y, q.y) - std::min(p.y + p.height, q.y + q.height);
+      const int joint = std::max(p.y + p.height, q.y + q.height) - std::min(p.y, q.y);
+      if (overlap >= 0.5 * std::min(p.width, q.width) && gap >= 0 && gap < 0.25 * joint) root[find(b)] = find(a);
+    }
+  }
+  std::vector<int> joined(n, 0);
+  int count = 1;
+  for (int l = 1; l < n; ++l)
+    if (find(l) == l) joined[l] = count++;
+  areas->assign(count, 0);
+  boxes->assign(count, cv::Rect());
+  for (int l = 1; l < n; ++l) {
+    const int j = joined[find(l)];
+    (*areas)[j] += stats.at<int>(l, cv::CC_STAT_AREA);
+    (*boxes)[j] = (*boxes)[j].empty() ? box_of(l) : ((*boxes)[j] | box_of(l));
+  }
+  if (count < n) {
+    for (int v = 0; v < labels->rows; ++v) {
+      int* row = labels->ptr<int>(v);
+      for (int u = 0; u < labels->cols; ++u) row[u] = joined[find(row[u])];
+    }
+  }
+  return count;
+}
+
+struct BlobEnds {
+  double foot_u = 0, foot_v = 0;  // the feet: column, and the lowest row
+  double top_u = 0;               // the head: column of the top row
+};
+
+// The ends of blob `label` in `box`. The body's axis is the median column of the blob's
+// upper half (head and trunk: a shadow on the floor and the legs' spread lie below it);
+// the feet are its pixels within 0.3 of the blob's height of that axis (a stride seen
+// from the side puts the feet up to about 0.4 of a person's height apart), in their
+// lowest 4 rows. A shadow cast sideways along the floor is not the feet.
+BlobEnds FindBlobEnds(const cv::Mat& labels, int label, const cv::Rect& box) {
+  std::vector<double> columns;
+  for (int v = box.y; v < box.y + (box.height + 1) / 2; ++v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = box.x; u < box.x + box.width; ++u)
+      if (row[u] == label) columns.push_back(u);
+  }
+  const double axis = columns.empty() ? box.x + 0.5 * (box.width - 1) : Median(columns);
+  const double reach = 0.3 * box.height;
+  int bottom = -1;
+  for (int v = box.y + box.height - 1; v >= box.y && bottom < 0; --v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = box.x; u < box.x + box.width; ++u)
+      if (row[u] == label && std::abs(u - axis) <= reach) {
+        bottom = v;
+        break;
+      }
+  }
+  BlobEnds ends;
+  if (bottom < 0) bottom = box.y + box.height - 1;
+  double foot_u = 0, top_u = 0;
+  int foot_count = 0, top_count = 0;
+  for (int v = std::max(box.y, bottom - 3); v <= bottom; ++v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = box.x; u < box.x + box.width; ++u)
+      if (row[u] == label && std::abs(u - axis) <= reach) foot_u += u, ++foot_count;
+  }
+  const int* top_row = labels.ptr<int>(box.y);
+  for (int u = box.x; u < box.x + box.width; ++u)
+    if (top_row[u] == label) top_u += u, ++top_count;
+  ends.foot_u = foot_count > 0 ? foot_u / foot_count : axis;
+  ends.foot_v = bottom;
+  ends.top_u = top_count > 0 ? top_u / top_count : axis;
+  return ends;
 }
 
 }  // namespace
@@ -25,46 +123,69 @@ PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vecto
     cv::Rect box;
     Eigen::Vector2d floor;
     double height;
+    bool feet;  // the feet in view (else the place is the adult-height guess)
   };
   std::vector<std::vector<Candidate>> candidates(cameras.size());
   for (size_t c = 0; c < cameras.size() && c < masks.size(); ++c) {
     if (masks[c].empty()) continue;
-    cv::Mat labels, stats, centroids;
-    const int n = cv::connectedComponentsWithStats(masks[c] != 0, labels, stats, centroids, 8, CV_32S);
     const Eigen::Vector3d eye = cameras[c].CentreInWorld();
     if (eye.y() <= 0) continue;
+    cv::Mat labels;
+    std::vector<int> areas;
+    std::vector<cv::Rect> boxes;
+    const int n = BodyBlobs(masks[c], &labels, &areas, &boxes);
     for (int l = 1; l < n; ++l) {
-      const int area = stats.at<int>(l, cv::CC_STAT_AREA);
+      const int area = areas[l];
       if (area < min_blob_px) continue;
-      const cv::Rect box(stats.at<int>(l, cv::CC_STAT_LEFT), stats.at<int>(l, cv::CC_STAT_TOP),
-                         stats.at<int>(l, cv::CC_STAT_WIDTH), stats.at<int>(l, cv::CC_STAT_HEIGHT));
-      // The feet: the blob's pixels in its lowest 4 rows; the head: its top row.
-      double foot_u = 0, top_u = 0;
-      int foot_count = 0, top_count = 0;
-      const int bottom = box.y + box.height - 1;
-      for (int v = std::max(box.y, bottom - 3); v <= bottom; ++v) {
-        const int* row = labels.ptr<int>(v);
-        for (int u = box.x; u < box.x + box.width; ++u)
-          if (row[u] == l) foot_u += u, ++foot_count;
-      }
-      const int* top_row = labels.ptr<int>(box.y);
-      for (int u = box.x; u < box.x + box.width; ++u)
-        if (top_row[u] == l) top_u += u, ++top_count;
+      const cv::Rect box = boxes[l];
+      const BlobEnds ends = FindBlobEnds(labels, l, box);
+      const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
+      const bool head_cut = box.y <= 0;
       Eigen::Matrix2Xd pixels(2, 2);
-      pixels << foot_u / std::max(1, foot_count), top_u / std::max(1, top_count), bottom + 0.5, box.y - 0.5;
+      pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
       const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
-      if (!(rays(1, 0) < -1e-6)) continue;  // the foot ray must go down to the floor
-      const Eigen::Vector3d floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
-      // Height: the top ray's point nearest the vertical line through the floor point.
       const Eigen::Vector3d r = rays.col(1);
       const Eigen::Vector2d horizontal(r.x(), r.z());
-      const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
       if (horizontal.squaredNorm() < 1e-12) continue;
-      const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
-      const double height = eye.y() + along * r.y();
-      // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
-      if (!(along > 0 && height > 1000 && height < 2300)) continue;
-      candidates[c].push_back({area, box, Eigen::Vector2d(floor.x(), floor.z()), height});
+      Eigen::Vector3d floor;
+      double height = 0;  // unknown unless both ends are in view
+      if (!feet_cut) {
+        if (!(rays(1, 0) < -1e-6)) continue;  // the foot ray must go down to the floor
+        floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
+        if (!head_cut) {
+          // Height: the top ray's point nearest the vertical line through the floor point.
+          const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
+          const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
+          height = eye.y() + along * r.y();
+          // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
+          if (!(along > 0 && height > 1000 && height < 2300)) continue;
+        }
+      } else {
+        // The feet below the image (a camera near the walk): the person stands where the
+        // top ray is an adult's height above the floor, but no farther than where the
+        // image's bottom edge meets the floor (the feet are below that edge, so nearer).
+        // From a camera at head height the first alone can put a person tens of metres
+        // away.
+        if (head_cut) continue;
+        Eigen::Matrix2Xd edge(2, 1);
+        edge << ends.foot_u, masks[c].rows - 0.5;
+        const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);
+        const Eigen::Vector2d horizontal_down(down.x(), down.z());
+        double reach = std::numeric_limits<double>::infinity();  // horizontal distance
+        if (down.y() < -1e-6) reach = horizontal_down.norm() * (-eye.y() / down.y());
+        const double t = std::abs(r.y()) > 1e-6 ? (kAdultHeightMm - eye.y()) / r.y() : -1;
+        double distance = t > 0 ? horizontal.norm() * t : reach;
+        distance = std::min(distance, reach);
+        if (!std::isfinite(distance)) continue;
+        // What it shows there must be a standing person's upper body: from the head (at
+        // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not).
+        const double top = eye.y() + r.y() * distance / horizontal.norm();
+        const double bottom = eye.y() + down.y() * distance / horizontal_down.norm();
+        if (!(top < 2300 && top - bottom >= 800)) continue;
+        const Eigen::Vector2d along = horizontal.normalized() * distance;
+        floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
+      }
+      candidates[c].push_back({area, box, Eigen::Vector2d(floor.x(), floor.z()), height, !feet_cut});
     }
   }
   // The person's place is the candidate place most cameras agree on (a candidate within
@@ -90,7 +211,7 @@ PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vecto
     }
   }
   if (best_cameras == 0) return sighting;
-  std::vector<double> agreeing_x, agreeing_z, heights;
+  std::vector<double> agreeing_x, agreeing_z, heights, guessed_x, guessed_z;
   for (size_t c = 0; c < candidates.size(); ++c) {
     // The blob nearest that place, if near enough.
     int best = -1;
@@ -102,15 +223,18 @@ PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vecto
     if (best < 0) continue;
     const Candidate& p = candidates[c][best];
     sighting.boxes[c] = p.box;
-    agreeing_x.push_back(p.floor.x());
-    agreeing_z.push_back(p.floor.y());
-    heights.push_back(p.height);
+    (p.feet ? agreeing_x : guessed_x).push_back(p.floor.x());
+    (p.feet ? agreeing_z : guessed_z).push_back(p.floor.y());
+    if (p.height > 0) heights.push_back(p.height);
   }
+  // Places read from feet when any camera saw them; the adult-height guesses otherwise.
+  sighting.feet_seen = !agreeing_x.empty();
+  sighting.cameras = static_cast<int>(agreeing_x.size() + guessed_x.size());
+  if (!sighting.feet_seen) agreeing_x.swap(guessed_x), agreeing_z.swap(guessed_z);
   if (agreeing_x.empty()) return sighting;
   sighting.found = true;
-  sighting.cameras = static_cast<int>(agreeing_x.size());
   sighting.floor_mm = Eigen::Vector2d(Median(agreeing_x), Median(agreeing_z));
-  sighting.height_mm = Median(heights);
+  sighting.height_mm = heights.empty() ? 0 : Median(heights);
   return sighting;
 }
 

@@ -1,7 +1,13 @@
 // Where the person is, from foreground masks alone: the tracker's automatic start and its
-// recovery after a loss. In each camera the largest foreground blob is the person; the
-// bottom of the blob is where the feet touch the floor (y = 0), so its ray meets the floor
-// at the person's place; the ray through the blob's top, at that place, gives the height.
+// recovery after a loss. In each camera the bottom of a blob's body (its lowest pixels near
+// the axis of its upper half, so that a shadow cast sideways along the floor is not taken
+// for the feet) is where the feet touch the floor (y = 0), so its ray meets the floor at
+// the person's place; the ray through the blob's top, at that place, gives the height. A
+// blob cut by the image's bottom edge (a camera near the walk) stands where its top ray
+// is an adult's 1.7 m above the floor, but no farther than where the bottom edge meets
+// the floor, if it shows at least 0.8 m of a person there, its height unknown; one cut at the top edge has no
+// height either. Blobs one above the other with a small gap (an occluder across the body)
+// are one person.
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
 // clutter in the air is) are passed over; with several cameras the place that most cameras'
 // blobs agree on (within 1 m) is taken, and the answer is the median of those blobs.
@@ -19,8 +25,11 @@ namespace jgpm {
 struct PersonSighting {
   bool found = false;
   Eigen::Vector2d floor_mm = Eigen::Vector2d::Zero();  // (x, z)
-  double height_mm = 0;                                // floor to the top of the head
+  double height_mm = 0;                                // floor to the top of the head (0:
+                                                       // no camera saw both ends)
   int cameras = 0;                                     // cameras that saw a blob
+  bool feet_seen = false;                              // the place is read from feet (else
+                                                       // from the head at an adult's height)
   std::vector<cv::Rect> boxes;                         // per camera: the blob's box (empty if none)
 };
 

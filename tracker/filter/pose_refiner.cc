@@ -66,17 +66,20 @@ void PoseRefiner::Reset() {
   if (posture_) posture_->Reset();
 }
 
-double PoseRefiner::Cost(const Eigen::VectorXd& pose, const double* p, const std::vector<CameraObservation>& observations,
-                         int worker) const {
+double PoseRefiner::Cost(const Eigen::VectorXd& pose, const double* p, double width,
+                         const std::vector<CameraObservation>& observations, int worker) const {
   Scratch& s = scratch_[worker];
   placer_.Place(pose.data(), p[0], p[1], p[2], p[3], &s.joints);
   body_.Place(s.joints, &s.capsules);
-  for (Capsule& c : s.capsules) c.radius_from_mm *= p[3], c.radius_to_mm *= p[3];
+  for (Capsule& c : s.capsules) {
+    c.radius_from_mm *= p[3] * width;
+    c.radius_to_mm *= p[3] * width;
+  }
   return likelihood_.Cost(s.capsules, observations, &s.workspace);
 }
 
 PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const Eigen::Vector3d& latent, double x_mm,
-                                        double z_mm, double heading_rad, double size,
+                                        double z_mm, double heading_rad, double size, double width,
                                         const std::vector<CameraObservation>& observations, int frame) {
   // The prior's standard deviation per channel, degrees.
   // s_k = max(sqrt(variance) scale_k, floor): when a bound on the variance from the nearest
@@ -93,10 +96,10 @@ PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const E
   auto energy = [&](const Eigen::VectorXd& pose, const double* p, int worker) {
     double penalty = 0.5 * ((pose - centre).cwiseQuotient(s)).squaredNorm();
     for (int i = 0; i < 4; ++i) penalty += 0.5 * std::pow((p[i] - start[i]) / kPlacementScale[i], 2);
-    return Cost(pose, p, observations, worker) / options_.temperature + penalty;
+    return Cost(pose, p, width, observations, worker) / options_.temperature + penalty;
   };
   Result r;
-  r.cost_before = Cost(pose_deg, start, observations, 0);
+  r.cost_before = Cost(pose_deg, start, width, observations, 0);
   Eigen::VectorXd current = pose_deg + offset_;
   double placement[4] = {x_mm, z_mm, heading_rad, size};
   double best = energy(current, placement, 0);
@@ -142,7 +145,7 @@ PoseRefiner::Result PoseRefiner::Refine(const Eigen::VectorXd& pose_deg, const E
   r.z_mm = placement[1];
   r.heading_rad = placement[2];
   r.size = placement[3];
-  r.cost_after = Cost(current, placement, observations, 0);
+  r.cost_after = Cost(current, placement, width, observations, 0);
   return r;
 }
 

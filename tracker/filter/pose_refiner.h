@@ -68,17 +68,19 @@ class PoseRefiner {
     double cost_before = 0, cost_after = 0;
     int evaluations = 0;
   };
-  // Refines `pose_deg` (the model's pose at `latent`) placed at (x, z, heading, size)
-  // against one frame's observations. `frame` keys the random numbers.
+  // Refines `pose_deg` (the model's pose at `latent`) placed at (x, z, heading, size), its
+  // widths scaled by size * width (the width held), against one frame's observations.
+  // `frame` keys the random numbers.
   Result Refine(const Eigen::VectorXd& pose_deg, const Eigen::Vector3d& latent, double x_mm, double z_mm,
-                double heading_rad, double size, const std::vector<CameraObservation>& observations, int frame);
+                double heading_rad, double size, double width, const std::vector<CameraObservation>& observations,
+                int frame);
   // Forgets the person (a new start).
   void Reset();
   const Eigen::VectorXd& offset() const { return offset_; }
 
  private:
-  double Cost(const Eigen::VectorXd& pose, const double* placement, const std::vector<CameraObservation>& observations,
-              int worker) const;
+  double Cost(const Eigen::VectorXd& pose, const double* placement, double width,
+              const std::vector<CameraObservation>& observations, int worker) const;
 
   const GaitModel& model_;
   const SilhouetteLikelihood& likelihood_;

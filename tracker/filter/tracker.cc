@@ -57,10 +57,14 @@ bool TrackerOptions::Check(std::string* why) const {
 }
 
 double TrackedFrame::MeanIou() const {
-  if (cameras.empty()) return 0;
   double sum = 0;
-  for (const CameraScore& c : cameras) sum += c.Iou();
-  return sum / cameras.size();
+  int counted = 0;
+  for (const CameraScore& c : cameras) {
+    if (c.observed_px == 0 && c.model_px == 0) continue;  // nobody there, nothing drawn: no evidence
+    sum += c.Iou();
+    ++counted;
+  }
+  return counted > 0 ? sum / counted : 1.0;
 }
 
 Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options)
@@ -128,12 +132,16 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const
   // Where the person was at the first frame: a straight walk fitted through the places
   // found (least squares in time), so a first frame where nobody was found still starts
   // in the right place.
+  // Places read from feet when some frames have them (a walker's feet are cut off only
+  // near a camera); the adult-height guesses, less sure, otherwise.
+  const bool feet = std::any_of(sightings.begin(), sightings.end(),
+                                [](const PersonSighting& s) { return s.found && s.feet_seen; });
   std::vector<double> heights;
   double n = 0, st = 0, stt = 0;
   Eigen::Vector2d sp = Eigen::Vector2d::Zero(), stp = Eigen::Vector2d::Zero();
   for (size_t i = 0; i < sightings.size(); ++i) {
     const PersonSighting& s = sightings[i];
-    if (!s.found) continue;
+    if (!s.found || s.feet_seen != feet) continue;
     if (s.height_mm > 0) heights.push_back(s.height_mm);
     n += 1, st += times[i], stt += times[i] * times[i];
     sp += s.floor_mm, stp += times[i] * s.floor_mm;
@@ -143,7 +151,7 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const
   const Eigen::Vector2d start = det > 1e-9 ? Eigen::Vector2d((stt * sp - st * stp) / det) : Eigen::Vector2d(sp / n);
   const Eigen::Vector2d velocity = det > 1e-9 ? Eigen::Vector2d((n * stp - st * sp) / det) : Eigen::Vector2d::Zero();
   guess->floor_mm = start;
-  guess->floor_std_mm = 120;
+  guess->floor_std_mm = feet ? 120 : 400;
   if (options_.known_size) {
     guess->size = 1, guess->size_std = 0;
   } else if (!heights.empty()) {
@@ -257,6 +265,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     ExactPose(out.state, &out.pose_deg, &out.joints_mm);
     out.prior_joints_mm = out.joints_mm;
     out.size = out.state[state_model_->placement().size];
+    out.width = out.state[state_model_->placement().width];
     out.heading_rad = out.state[state_model_->placement().heading];
     finish(&out);
     return out;
@@ -298,13 +307,15 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   out.prior_joints_mm = out.joints_mm;
   const PlacementIndex p = state_model_->placement();
   out.size = out.state[p.size];
+  out.width = out.state[p.width];
   out.heading_rad = out.state[p.heading];
   if (refiner_) {
     const Eigen::Vector3d latent = model_.HasManifold()
                                        ? model_.ManifoldToLatent({out.state[0], out.state[1], out.state[2]})
                                        : Eigen::Vector3d(out.state[0], out.state[1], out.state[2]);
     const PoseRefiner::Result r = refiner_->Refine(out.pose_deg, latent, out.state[p.x], out.state[p.z],
-                                                   out.state[p.heading], out.state[p.size], observations, frame.index);
+                                                   out.state[p.heading], out.state[p.size], out.width, observations,
+                                                   frame.index);
     out.pose_deg = r.pose_deg;
     out.size = r.size;
     out.heading_rad = r.heading_rad;
@@ -314,20 +325,35 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   {
     std::vector<Capsule> capsules;
     body_.Place(out.joints_mm, &capsules);
-    for (Capsule& c : capsules) c.radius_from_mm *= out.size, c.radius_to_mm *= out.size;
+    for (Capsule& c : capsules) {
+      c.radius_from_mm *= out.size * out.width;
+      c.radius_to_mm *= out.size * out.width;
+    }
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
     likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
   }
-  bool anyone = false;
-  for (const CameraObservation& o : observations) anyone = anyone || o.Foreground() > 0;
-  bad_frames_ = out.MeanIou() < options_.lost_iou ? bad_frames_ + 1 : 0;
-  if (!anyone || bad_frames_ >= options_.lost_frames) {
+  // Evidence of loss: the cameras that see something where the person is expected, or
+  // draw the estimate, explaining it badly. A camera that sees nobody there and whose
+  // estimate is out of its view says nothing. When the estimate explains the views
+  // badly, is anyone there at all? A person-sized blob standing on the floor in some
+  // camera, not a segmentation's specks (LocatePerson).
+  bool nobody = false;
+  if (out.MeanIou() < options_.lost_iou) {
+    nobody = !LocatePerson(cameras_, frame.masks).found;
+    ++bad_frames_;
+  } else {
+    bad_frames_ = 0;
+  }
+  bool evidence = false;  // some camera sees someone where expected, or draws the estimate
+  for (const CameraScore& c : out.cameras) evidence = evidence || c.observed_px > 0 || c.model_px > 0;
+  if (nobody || bad_frames_ >= options_.lost_frames) {
     out.status = TrackStatus::kLost;
     // Start again from the masks as soon as someone is seen.
     started_ = false;
-    if (anyone) StartFromFrames({frame});
+    if (!nobody) StartFromFrames({frame});
   } else {
-    out.status = TrackStatus::kTracked;
+    // Out of every view and seen by none: the estimate is the prediction.
+    out.status = evidence ? TrackStatus::kTracked : TrackStatus::kPredicted;
   }
   finish(&out);
   return out;

@@ -8,9 +8,10 @@
 // Start: the first frames' masks give the person's place, height and direction of travel
 // (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there.
 // Each frame: predict, anneal, estimate. A dropped frame is predicted only. When the
-// estimate explains the masks badly (mean IoU below lost_iou) for lost_frames frames, or
-// nobody is in view, the frame is `lost` and the tracker restarts from the masks as soon
-// as it finds the person again.
+// estimate explains the masks badly (mean IoU below lost_iou, over the cameras that see
+// someone where the person is expected or draw the estimate) for lost_frames frames, or
+// explains them badly and nobody person-sized stands in any view, the frame is `lost` and
+// the tracker restarts from the masks as soon as it finds the person again.
 //
 // Silhouettes hardly tell which leg is forward: half a walking cycle on, a walker is
 // nearly their own mirror image, which seen from the side, the front or the back has the
@@ -86,6 +87,7 @@ struct TrackedFrame {
                                     // exact pose at the state, before refinement)
   double size = 1;                  // the skeleton's scale and the heading (radians about +y)
   double heading_rad = 0;           // the joints were placed with
+  double width = 1;                 // the body's widths' scale beyond the size
   std::vector<CameraScore> cameras;
   double ess = 0;                   // effective sample size / particles
   int evaluations = 0;              // likelihood evaluations spent on the frame
@@ -93,6 +95,8 @@ struct TrackedFrame {
   double latency_ms = 0;            // live: from capture to this estimate (not written:
                                     // one seed gives one poses.json)
 
+  // Over the cameras that see someone where the person is expected or draw the estimate
+  // (a camera with neither is no evidence either way); 1 when there are none.
   double MeanIou() const;
 };
 

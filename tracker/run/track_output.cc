@@ -98,12 +98,13 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
     if (f.state.size() == 0) {
       j["joints_mm"] = nullptr;
     } else {
-      const int k = static_cast<int>(f.state.size()) - 5;  // the shared placement (tracker/state/state_model.h)
+      const int k = static_cast<int>(f.state.size()) - 6;  // the shared placement (tracker/state/state_model.h)
       j["joints_mm"] = Points(f.joints_mm);
       j["root_mm"] = {Round2(f.joints_mm(0, 0)), Round2(f.joints_mm(1, 0)), Round2(f.joints_mm(2, 0))};
       j["heading_deg"] = f.heading_rad * kDegPerRad;
       j["rate"] = f.state[k + 3];
       j["size"] = f.size;
+      j["width"] = f.width;
       json coordinates = json::object();
       for (size_t c = 0; c < run.coordinate_names.size() && static_cast<int>(c) < k; ++c) {
         coordinates[run.coordinate_names[c]] = f.state[c];

@@ -52,6 +52,7 @@ void JointSpaceStateModel::Sample(const InitialGuess& guess, Random* r, double* 
       guess.heading_std_rad >= std::numbers::pi ? (2 * r->Uniform() - 1) * std::numbers::pi : guess.heading_rad + guess.heading_std_rad * r->Normal();
   s[p.rate] = guess.speed_mm_s >= 0 ? guess.speed_mm_s + 80 * r->Normal() : 1250 + 150 * r->Normal();
   s[p.size] = guess.size + guess.size_std * r->Normal();
+  s[p.width] = guess.width + guess.width_std * r->Normal();
   Normalise(s);
 }
 
@@ -64,13 +65,14 @@ void JointSpaceStateModel::Predict(double dt, Random* r, double* s) const {
   s[p.heading] += k * 1.0 * kDeg * r->Normal();
   s[p.rate] += k * 30 * r->Normal();
   s[p.size] += k * 0.001 * r->Normal();
+  s[p.width] += k * kWidthNoise * r->Normal();
   Normalise(s);
 }
 
 Eigen::VectorXd JointSpaceStateModel::DiffusionStd() const {
   Eigen::VectorXd std(Dimension());
   std.head(channels_) = 2 * step_;
-  std.tail(5) << 30, 30, 6 * kDeg, 60, known_size_ ? 0.0 : 0.01;
+  std.tail(6) << 30, 30, 6 * kDeg, 60, known_size_ ? 0.0 : 0.01, kWidthDiffusion;
   return std;
 }
 
@@ -80,6 +82,7 @@ void JointSpaceStateModel::Normalise(double* s) const {
   s[p.heading] = WrapAngle(s[p.heading]);
   s[p.rate] = std::clamp(s[p.rate], 200.0, 2500.0);
   s[p.size] = known_size_ ? 1.0 : std::clamp(s[p.size], 0.75, 1.3);
+  s[p.width] = std::clamp(s[p.width], kMinWidth, kMaxWidth);
 }
 
 double JointSpaceStateModel::Period(int dimension) const {

@@ -21,7 +21,7 @@ class JointSpaceStateModel : public StateModel {
   explicit JointSpaceStateModel(const GaitModel& model, bool known_size = false);
 
   std::string Name() const override { return "joint-space"; }
-  int Dimension() const override { return channels_ + 5; }
+  int Dimension() const override { return channels_ + 6; }
   const Skeleton& skeleton() const override { return model_.skeleton(); }
   void Sample(const InitialGuess& guess, Random* random, double* state) const override;
   void Predict(double dt, Random* random, double* state) const override;

@@ -29,6 +29,7 @@ void LatentStateModel::Sample(const InitialGuess& guess, Random* r, double* s) c
   s[5] = guess.heading_std_rad >= std::numbers::pi ? (2 * r->Uniform() - 1) * std::numbers::pi : guess.heading_rad + guess.heading_std_rad * r->Normal();
   s[6] = guess.speed_mm_s >= 0 ? guess.speed_mm_s + 80 * r->Normal() : 1250 + 150 * r->Normal();
   s[7] = guess.size + guess.size_std * r->Normal();
+  s[8] = guess.width + guess.width_std * r->Normal();
   Normalise(s);
 }
 
@@ -49,14 +50,15 @@ void LatentStateModel::Predict(double dt, Random* r, double* s) const {
   s[5] += k * d_.heading_noise_deg * kDeg * r->Normal();
   s[6] += k * d_.speed_noise_mm_s * r->Normal();
   s[7] += k * d_.size_noise * r->Normal();
+  s[8] += k * d_.width_noise * r->Normal();
   Normalise(s);
 }
 
 Eigen::VectorXd LatentStateModel::DiffusionStd() const {
-  Eigen::VectorXd std(8);
+  Eigen::VectorXd std(9);
   const double latent = d_.latent_diffusion * step_;
   std << latent, latent, latent, d_.root_diffusion_mm, d_.root_diffusion_mm, d_.heading_diffusion_deg * kDeg,
-      d_.speed_diffusion_mm_s, d_.size_diffusion;
+      d_.speed_diffusion_mm_s, d_.size_diffusion, d_.width_diffusion;
   return std;
 }
 
@@ -65,6 +67,7 @@ void LatentStateModel::Normalise(double* s) const {
   s[5] = WrapAngle(s[5]);
   s[6] = std::clamp(s[6], d_.min_speed_mm_s, d_.max_speed_mm_s);
   s[7] = std::clamp(s[7], d_.min_size, d_.max_size);
+  s[8] = std::clamp(s[8], d_.min_width, d_.max_width);
 }
 
 double LatentStateModel::Period(int dimension) const { return dimension == 5 ? 2 * std::numbers::pi : 0; }

@@ -22,11 +22,13 @@ struct LatentDynamics {
   double heading_noise_deg = 1.0;
   double root_noise_mm = 8;
   double size_noise = 0.001;
+  double width_noise = kWidthNoise;
   double min_speed_mm_s = 200, max_speed_mm_s = 2500;
   double min_size = 0.75, max_size = 1.3;
+  double min_width = kMinWidth, max_width = kMaxWidth;
   // The annealing's diffusion at its first layer (latent: in mean training steps).
   double latent_diffusion = 1.5, root_diffusion_mm = 30, heading_diffusion_deg = 6, speed_diffusion_mm_s = 60,
-         size_diffusion = 0.01;
+         size_diffusion = 0.01, width_diffusion = kWidthDiffusion;
 };
 
 class LatentStateModel : public StateModel {
@@ -37,7 +39,7 @@ class LatentStateModel : public StateModel {
   LatentStateModel(const GaitModel& model, const PoseTable& table, const LatentDynamics& dynamics = {});
 
   std::string Name() const override { return "latent"; }
-  int Dimension() const override { return 8; }
+  int Dimension() const override { return 9; }
   const Skeleton& skeleton() const override { return model_.skeleton(); }
   void Sample(const InitialGuess& guess, Random* random, double* state) const override;
   void Predict(double dt, Random* random, double* state) const override;

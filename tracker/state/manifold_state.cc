@@ -39,6 +39,7 @@ void ManifoldStateModel::Sample(const InitialGuess& guess, Random* r, double* s)
   s[4] = guess.floor_mm.y() + guess.floor_std_mm * r->Normal();
   s[5] = guess.heading_std_rad >= std::numbers::pi ? (2 * r->Uniform() - 1) * std::numbers::pi : guess.heading_rad + guess.heading_std_rad * r->Normal();
   s[7] = guess.size + guess.size_std * r->Normal();
+  s[8] = guess.width + guess.width_std * r->Normal();
   s[6] = 1;  // a placeholder for Normalise, which reads every coordinate; set below
   Normalise(s);
   // A walker covers a stride per cycle: the speed seen at the start sets each particle's
@@ -60,13 +61,14 @@ void ManifoldStateModel::Predict(double dt, Random* r, double* s) const {
   s[5] += k * d_.heading_noise_deg * kDeg * r->Normal();
   s[6] += k * d_.cadence_noise * r->Normal();
   s[7] += k * d_.size_noise * r->Normal();
+  s[8] += k * d_.width_noise * r->Normal();
   Normalise(s);
 }
 
 Eigen::VectorXd ManifoldStateModel::DiffusionStd() const {
-  Eigen::VectorXd std(8);
+  Eigen::VectorXd std(9);
   std << d_.phase_diffusion, d_.gait_diffusion, d_.scale_diffusion, d_.root_diffusion_mm, d_.root_diffusion_mm,
-      d_.heading_diffusion_deg * kDeg, d_.cadence_diffusion, d_.size_diffusion;
+      d_.heading_diffusion_deg * kDeg, d_.cadence_diffusion, d_.size_diffusion, d_.width_diffusion;
   return std;
 }
 
@@ -77,6 +79,7 @@ void ManifoldStateModel::Normalise(double* s) const {
   s[5] = WrapAngle(s[5]);
   s[6] = std::clamp(s[6], d_.min_cadence, d_.max_cadence);
   s[7] = std::clamp(s[7], d_.min_size, d_.max_size);
+  s[8] = std::clamp(s[8], d_.min_width, d_.max_width);
 }
 
 double ManifoldStateModel::Period(int dimension) const {

@@ -5,7 +5,7 @@
 // Dynamics, per frame of dt seconds (noise standard deviations are per 1/30 s and grow with
 // sqrt(dt)):
 //   phase   += cadence dt + noise: the walking cycle advances at the cadence;
-//   cadence, gait position, stride scale, heading, size: slow random walks (a walker keeps
+//   cadence, gait position, stride scale, heading, size, width: slow random walks (a walker keeps
 //           their style; the layers of a multi-layer model are reached by the scale's drift);
 //   root    += stride(gait, scale) size cadence dt along the heading, + noise: a walker
 //           moves as far per cycle as the stance foot is carried back (prior/pose_table.h),
@@ -27,8 +27,10 @@ struct ManifoldDynamics {
   double heading_noise_deg = 1.0;
   double root_noise_mm = 8;
   double size_noise = 0.001;
+  double width_noise = kWidthNoise;
   double min_cadence = 0.5, max_cadence = 1.6;  // cycles per second
   double min_size = 0.75, max_size = 1.3;
+  double min_width = kMinWidth, max_width = kMaxWidth;
   // A start without a manifold point draws the stride scale from N(1, start_scale_std)
   // within the layers' range (0: uniform over it). Scale 1 is the recorded strides; the
   // other layers are the training data stretched or shrunk (eq. 5) to cover other people,
@@ -36,7 +38,8 @@ struct ManifoldDynamics {
   double start_scale_std = 0.15;
   // The annealing's diffusion at its first layer.
   double phase_diffusion = 0.04, gait_diffusion = 0.4, scale_diffusion = 0.06, root_diffusion_mm = 30,
-         heading_diffusion_deg = 6, cadence_diffusion = 0.03, size_diffusion = 0.01;
+         heading_diffusion_deg = 6, cadence_diffusion = 0.03, size_diffusion = 0.01,
+         width_diffusion = kWidthDiffusion;
 };
 
 class ManifoldStateModel : public StateModel {
@@ -45,7 +48,7 @@ class ManifoldStateModel : public StateModel {
   ManifoldStateModel(const GaitModel& model, const PoseTable& table, const ManifoldDynamics& dynamics = {});
 
   std::string Name() const override { return "manifold"; }
-  int Dimension() const override { return 8; }
+  int Dimension() const override { return 9; }
   const Skeleton& skeleton() const override { return model_.skeleton(); }
   void Sample(const InitialGuess& guess, Random* random, double* state) const override;
   void Predict(double dt, Random* random, double* state) const override;

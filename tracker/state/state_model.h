@@ -2,10 +2,12 @@
 //   tracker/state/manifold_state.h     the JGPM family: (phase, gait, stride scale) on the manifold
 //   tracker/state/latent_state.h       other GP models and PCA: a point of the latent space
 //   tracker/state/joint_space_state.h  the classic baseline without a learned prior: 43 angles
-// Every state ends with the same five numbers: where the person stands on the floor (x, z
+// Every state ends with the same six numbers: where the person stands on the floor (x, z
 // in mm, the world's y is up), which way they face (heading, radians about +y, 0 facing
-// +z), how fast they go (cadence in cycles per second, or speed in m/s), and their size
-// (one scale on the skeleton's bone lengths).
+// +z), how fast they go (cadence in cycles per second, or speed in m/s), their size (one
+// scale on the skeleton's bone lengths and the body's widths) and their width (one more
+// scale on the body's widths alone: a build, or clothes, the adult-average body lacks;
+// without it a coat could only be explained by a taller person farther away).
 #pragma once
 
 #include <string>
@@ -22,7 +24,7 @@ namespace jgpm {
 
 // Indices of the shared part, from StateModel::placement().
 struct PlacementIndex {
-  int x, z, heading, rate, size;
+  int x, z, heading, rate, size, width;
 };
 
 // The rough where and how big of a person, from initialisation.
@@ -33,6 +35,8 @@ struct InitialGuess {
   double heading_std_rad = 3.2;  // >= pi: any heading
   double size = 1;
   double size_std = 0.05;
+  double width = 1;
+  double width_std = 0.06;
   double speed_mm_s = -1;  // walking speed seen at the start; < 0: unknown
   // The state's own coordinates when known (e.g. from a clip's truth); empty: spread over
   // everything the prior allows. Known ones are spread by a quarter of the diffusion.
@@ -46,8 +50,13 @@ class StateModel {
   virtual std::string Name() const = 0;
   virtual int Dimension() const = 0;
   PlacementIndex placement() const {
-    const int k = Dimension() - 5;
-    return {k, k + 1, k + 2, k + 3, k + 4};
+    const int k = Dimension() - 6;
+    return {k, k + 1, k + 2, k + 3, k + 4, k + 5};
+  }
+  // The factor on every body part's radius: size times width.
+  double RadiusScale(const double* state) const {
+    const PlacementIndex p = placement();
+    return state[p.size] * state[p.width];
   }
   // The skeleton whose bone ends Evaluate returns (the model's reference skeleton).
   virtual const Skeleton& skeleton() const = 0;
@@ -79,6 +88,14 @@ class StateModel {
 // at (x, z) and raised so the lowest foot joint is `clearance_mm` above the floor.
 void PlaceInWorld(const Eigen::Matrix3Xd& relative, double foot_height_mm, double x_mm, double z_mm,
                   double heading_rad, double size, double clearance_mm, Eigen::Matrix3Xd* world);
+
+// The width's range and how it moves, shared by every state model. Range: the realism
+// clips' people span 0.75-1.25 of the average widths (clip_body.h), and a coat or a skirt
+// adds up to 30% where they are. Between frames it drifts 0.2% (a build does not change);
+// the annealing's first layer spreads it by 2% a frame (the size's 1%: the width is less
+// sure at the start), so a first guess 10% off is corrected within about ten frames
+// where the silhouettes show it.
+constexpr double kMinWidth = 0.75, kMaxWidth = 1.5, kWidthNoise = 0.002, kWidthDiffusion = 0.02;
 
 // Height of the lowest foot joint above the floor while walking (mm): CMU's foot and toe
 // bone ends sit on the skin's surface, a shoe's sole lower.

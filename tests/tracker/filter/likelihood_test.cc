@@ -6,6 +6,8 @@
 #include "tracker/filter/likelihood.h"
 
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -16,6 +18,7 @@
 #include "test_support.h"
 #include "tracker/body/body_model.h"
 #include "tracker/body/ray_caster.h"
+#include "tracker/clip/clip_body.h"
 
 namespace jgpm {
 namespace {
@@ -144,6 +147,99 @@ TEST(Likelihood, LowestAtTheTruthAndGrowingAwayFromIt) {
     collapsed.col(right) = truth.col(left) + hips;  // the right leg where the left one is, at its own hip
   }
   EXPECT_GT(cost(collapsed), best + 0.1);
+}
+
+// Masks the tracker's body cannot explain exactly: another person's build in a coat and
+// with a bag, or in a skirt (tracker/clip/clip_body.h), ray cast. The true pose of the
+// tracker's body still costs less than the bodies a loose score would take for it: both
+// legs in one place, a smaller person, one half a cycle on.
+TEST(Likelihood, TheTruthStillWinsOnMasksOfAnotherBody) {
+  const Scene& s = Walk();
+  const SilhouetteLikelihood likelihood(s.cameras);
+  const int f = 120;
+  const Kinematics kinematics(s.skeleton);
+  const Eigen::Matrix3Xd truth = kinematics.Compute(s.motion.Frame(f));
+  for (const auto& [clothing, bag] : {std::pair{Clothing::kCoat, true}, std::pair{Clothing::kSkirt, false}}) {
+    SCOPED_TRACE(std::string(ClothingName(clothing)));
+    ClipBodyOptions other;
+    other.body_seed = 5;
+    other.clothing = clothing;
+    other.bag = bag;
+    const ClipBody body(s.skeleton, other, "35.asf");
+    std::vector<Capsule> dressed;
+    body.Place(truth, &dressed);
+    std::vector<CameraObservation> observed;
+    for (const Camera& camera : s.cameras) {
+      BodyImage image;
+      RayCaster(camera).Render(dressed, &image);
+      const cv::Mat mask = image.Mask();
+      cv::Rect box = cv::boundingRect(mask);
+      observed.push_back(likelihood.Observe(mask, {box.x - 20, box.y - 20, box.width + 40, box.height + 40}));
+    }
+    SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+    auto cost = [&](const Eigen::Matrix3Xd& joints, double size = 1) {
+      return likelihood.Cost(Body(s, joints, size), observed, &workspace);
+    };
+    const double best = cost(truth);
+    Eigen::Matrix3Xd collapsed = truth;
+    for (const char* side : {"hipjoint", "femur", "tibia", "foot", "toes"}) {
+      const int left = s.skeleton.FindBone(std::string("l") + side), right = s.skeleton.FindBone(std::string("r") + side);
+      const Eigen::Vector3d hips = truth.col(s.skeleton.FindBone("rhipjoint")) - truth.col(s.skeleton.FindBone("lhipjoint"));
+      collapsed.col(right) = truth.col(left) + hips;
+    }
+    const Eigen::Vector3d floor(truth(0, 0), 0, truth(2, 0));
+    const Eigen::Matrix3Xd smaller = (0.85 * (truth.colwise() - floor)).colwise() + floor;
+    Eigen::Matrix3Xd later = kinematics.Compute(s.motion.Frame(f + 16));  // half a step on
+    later.colwise() += truth.col(0) - later.col(0);
+    std::printf("truth %.3f, legs collapsed %.3f, 15%% smaller %.3f, half a step on %.3f\n", best, cost(collapsed),
+                cost(smaller, 0.85), cost(later));
+    EXPECT_GT(best, 0.05);  // the masks are not the tracker's body
+    EXPECT_GT(cost(collapsed), best);
+    EXPECT_GT(cost(smaller, 0.85), best);
+    EXPECT_GT(cost(later), best);
+  }
+}
+
+// A camera whose segmentation lost the person (a blank mask where three cameras see him):
+// unbounded, drawing the body there costs |S| / 150 (here about 300) against the good
+// views' fractions, so a body out of that camera's view, badly placed for the others, won.
+// Bounded, the camera costs at most 2 + outline_weight, and the three good views decide.
+TEST(Likelihood, ABlankCameraCannotOutvoteThreeGoodOnes) {
+  const Scene& s = Walk();
+  const Eigen::Matrix3Xd truth = Kinematics(s.skeleton).Compute(s.motion.Frame(120));
+  const Eigen::Vector3d at(truth(0, 0), 900, truth(2, 0));
+  std::vector<Camera> cameras = s.cameras;
+  cameras.push_back(LookAtCamera("back", 320, 240, 330, at + Eigen::Vector3d(-4200, 600, 300), at));
+  // A fourth camera narrow on the person: 900 mm aside, the body leaves its view.
+  cameras.push_back(LookAtCamera("close", 320, 240, 1500, at + Eigen::Vector3d(200, 200, -3000), at));
+  Eigen::Matrix3Xd aside = truth;
+  aside.colwise() += Eigen::Vector3d(900, 0, 0);
+  for (bool bounded : {true, false}) {
+    LikelihoodOptions options;
+    options.bound_cameras = bounded;
+    const SilhouetteLikelihood likelihood(cameras, options);
+    std::vector<CameraObservation> observed;
+    for (size_t c = 0; c < cameras.size(); ++c) {
+      BodyImage image;
+      RayCaster(cameras[c]).Render(Body(s, truth), &image);
+      const cv::Mat mask = c + 1 == cameras.size() ? cv::Mat(cv::Mat::zeros(240, 320, CV_8UC1)) : image.Mask();
+      observed.push_back(likelihood.Observe(mask, {0, 0, 320, 240}));
+    }
+    SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+    std::vector<CameraScore> scores;
+    const double at_truth = likelihood.Cost(Body(s, truth), observed, &workspace, &scores);
+    const double blank_camera = scores.back().cost;
+    const double moved = likelihood.Cost(Body(s, aside), observed, &workspace, &scores);
+    ASSERT_EQ(scores.back().model_px, 0);  // out of the blank camera's view
+    std::printf("%s: truth %.2f (blank camera %.2f), 900 mm aside %.2f\n", bounded ? "bounded" : "unbounded", at_truth,
+                blank_camera, moved);
+    if (bounded) {
+      EXPECT_LE(blank_camera, 2 + options.outline_weight);
+      EXPECT_LT(at_truth, moved);
+    } else {
+      EXPECT_GT(at_truth, moved);  // what the bound is for
+    }
+  }
 }
 
 // A region wholly outside the image (the person expected beyond its border) while the body

@@ -273,7 +273,7 @@ TEST(Tracker, TheSeedReachesTheRefinement) {
     RefinementOptions options;
     options.seed = seed;
     PoseRefiner refiner(*model, likelihood, body, options, &pool);
-    return refiner.Refine(pose, latent, root.x(), root.z(), 0, 1, observed, 5).pose_deg;
+    return refiner.Refine(pose, latent, root.x(), root.z(), 0, 1, 1, observed, 5).pose_deg;
   };
   EXPECT_EQ(refine(1), refine(1));
   EXPECT_NE(refine(1), refine(2));
