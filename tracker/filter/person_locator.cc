@@ -20,7 +20,7 @@ double Median(std::vector<double> v) {
 constexpr double kAdultHeightMm = 1700;
 
 // The mask's blobs, with the pieces of one body joined: a blob above another, overlapping
-// it by half the narrower one's width, with a gap under a quarter of their joint height
+// it by half the narrower one's width, with a gap under a tenth of their joint height
 // (an occluder across the body, a belt of the same colour as the background) is the same
 // person. `labels`: CV_32S, 0 background, 1..n-1 the joined blobs; areas and boxes per
 // label (index 0 unused). Returns n.
@@ -43,7 +43,7 @@ int BodyBlobs(const cv::Mat& mask, cv::Mat* labels, std::vector<int>* areas, std
       const int overlap = std::min(p.x + p.width, q.x + q.width) - std::max(p.x, q.x);
       const int gap = std::max(p.y, q.y) - std::min(p.y + p.height, q.y + q.height);
       const int joint = std::max(p.y + p.height, q.y + q.height) - std::min(p.y, q.y);
-      if (overlap >= 0.5 * std::min(p.width, q.width) && gap >= 0 && gap < 0.25 * joint) root[find(b)] = find(a);
+      if (overlap >= 0.5 * std::min(p.width, q.width) && gap >= 0 && gap < 0.1 * joint) root[find(b)] = find(a);
     }
   }
   std::vector<int> joined(n, 0);
@@ -187,6 +187,15 @@ PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vecto
       }
       candidates[c].push_back({area, box, Eigen::Vector2d(floor.x(), floor.z()), height, !feet_cut});
     }
+  }
+  // A blob whose feet are seen is better evidence than a guess from a head: when any
+  // camera has one, the guesses do not vote (clutter at the image's edge is not a person).
+  bool any_feet = false;
+  for (const auto& own : candidates)
+    for (const Candidate& q : own) any_feet = any_feet || q.feet;
+  if (any_feet) {
+    for (auto& own : candidates)
+      own.erase(std::remove_if(own.begin(), own.end(), [](const Candidate& q) { return !q.feet; }), own.end());
   }
   // The person's place is the candidate place most cameras agree on (a candidate within
   // 1 m), ties going to the larger total blob area: a ghost blob that only one camera sees

@@ -53,7 +53,7 @@ bool TrackerOptions::Check(std::string* why) const {
     if (why) *why = problem;  // `why` may be null
     return false;
   }
-  return annealing.Check(why) && likelihood.Check(why) && table.Check(why);
+  return annealing.Check(why) && likelihood.Check(why) && table.Check(why) && alignment.Check(why);
 }
 
 double TrackedFrame::MeanIou() const {
@@ -74,7 +74,8 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
       pool_(options.threads),
       body_(model.skeleton(), {}, "the model's skeleton"),
       likelihood_(cameras, options.likelihood),
-      placer_(model.skeleton()) {
+      placer_(model.skeleton()),
+      alignment_(cameras, options.alignment) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("tracking options", why);
   if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
@@ -275,7 +276,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // take about a millisecond per camera).
   std::vector<CameraObservation> observations(frame.masks.size());
   pool_.For(static_cast<int>(frame.masks.size()), [&](int begin, int end, int) {
-    for (int c = begin; c < end; ++c) observations[c] = likelihood_.Observe(frame.masks[c], regions[c]);
+    for (int c = begin; c < end; ++c) observations[c] = likelihood_.Observe(alignment_.Apply(c, frame.masks[c]), regions[c]);
   });
   const AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (fresh_) {
@@ -331,6 +332,23 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     }
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
     likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
+    if (alignment_.active() && out.MeanIou() >= options_.lost_iou) {
+      // The cameras that see the estimate line their views up with it a little more.
+      const int n = static_cast<int>(cameras_.size());
+      std::vector<cv::Mat> silhouettes(n), masks(n);
+      std::vector<cv::Rect> boxes(n);
+      pool_.For(n, [&](int begin, int end, int) {
+        for (int c = begin; c < end; ++c) {
+          masks[c] = observations[c].mask();
+          boxes[c] = observations[c].region();
+          if (out.cameras[c].model_px == 0 || out.cameras[c].observed_px == 0) continue;
+          BitMask canvas(cameras_[c].width, cameras_[c].height);
+          likelihood_.renderer(c).Draw(capsules, &canvas);
+          silhouettes[c] = canvas.ToMat();
+        }
+      });
+      alignment_.Update(silhouettes, masks, boxes, out.joints_mm.col(0));
+    }
   }
   // Evidence of loss: the cameras that see something where the person is expected, or
   // draw the estimate, explaining it badly. A camera that sees nobody there and whose

@@ -41,6 +41,7 @@
 #include "tracker/filter/likelihood.h"
 #include "tracker/filter/pose_refiner.h"
 #include "tracker/filter/thread_pool.h"
+#include "tracker/filter/view_alignment.h"
 #include "tracker/frames/frame_source.h"
 #include "tracker/state/pose_table.h"
 #include "tracker/state/state_model.h"
@@ -57,6 +58,7 @@ struct TrackerOptions {
   LikelihoodOptions likelihood;
   PoseTableOptions table;
   RefinementOptions refinement;   // after the search, in joint-angle space (not for joint-space)
+  ViewAlignmentOptions alignment; // each camera's residual calibration error, learnt
   StateSpace space = StateSpace::kModel;
   bool known_size = false;        // the model's skeleton is the subject's own (jgpm track
                                   // --asf): size 1, neither estimated nor refined
@@ -111,6 +113,7 @@ class Tracker {
   const SilhouetteLikelihood& likelihood() const { return likelihood_; }
   const TrackerOptions& options() const { return options_; }
   const AnnealedFilter& filter() const { return *filter_; }
+  const ViewAlignment& alignment() const { return alignment_; }
 
   // Starts from a known guess (e.g. `--init truth`) at the next frame; `frame` (the first
   // frame tracked from it) keys the particles' random numbers, so that each restart draws
@@ -143,6 +146,7 @@ class Tracker {
   std::unique_ptr<AnnealedFilter> filter_;
   std::unique_ptr<PoseRefiner> refiner_;
   PosePlacer placer_;
+  ViewAlignment alignment_;
   bool started_ = false, fresh_ = false;
   std::vector<cv::Rect> start_boxes_;
   double last_time_s_ = 0;
