@@ -70,6 +70,20 @@ inline GaitDataset SyntheticWalks(int gaits, int poses) {
   return dataset;
 }
 
+// A model of `kind` briefly trained (`iterations` full-batch steps) on the first `trials`
+// walks of the default training split: for tests that need a real prior's shape and
+// ranges, not its quality.
+inline std::unique_ptr<GaitModel> TrainOnFirstWalks(ModelKind kind, int trials, int iterations) {
+  std::vector<TrialId> ids = SplitTrials("train");
+  ids.resize(trials);
+  const GaitDataset walks = PrepareGaitDataset(CmuRoot(), "first walks", ids, GaitCycleOptions{});
+  TrainingOptions options;
+  options.kind = kind;
+  options.full.max_iterations = iterations;
+  const GaitTrial& first = walks.trials[0];
+  return TrainGaitModel(walks, {first.id.name, ReadTextFile(CmuRoot() / first.asf, "asf")}, options);
+}
+
 // A small model of `kind` on 5 synthetic walks of 10 poses.
 inline std::unique_ptr<GaitModel> TrainOnSyntheticWalks(ModelKind kind, Learning learning = Learning::kFull) {
   TrainingOptions options;

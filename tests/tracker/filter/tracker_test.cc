@@ -21,6 +21,7 @@
 #include "io/mocap/asf.h"
 #include "prior/model/model_file.h"
 #include "prior/model/train.h"
+#include "prior/prior_test_support.h"
 #include "test_support.h"
 #include "tracker/clip/synthetic_clip.h"
 #include "tracker/run/track_job.h"
@@ -43,15 +44,7 @@ const Fixture& Shared() {
   static Fixture fixture;  // its folder is removed at exit
   static const bool made = [] {
     Fixture* f = &fixture;
-    std::vector<TrialId> trials = test::SplitTrials("train");
-    trials.resize(5);
-    const GaitDataset dataset = PrepareGaitDataset(test::CmuRoot(), "five", trials, GaitCycleOptions{});
-    TrainingOptions training;
-    training.kind = ModelKind::kMljgpmTorus;
-    training.full.max_iterations = 5;
-    const GaitTrial& first = dataset.trials[0];
-    const auto model =
-        TrainGaitModel(dataset, {first.id.name, ReadTextFile(test::CmuRoot() / first.asf, "asf")}, training);
+    const auto model = test::TrainOnFirstWalks(ModelKind::kMljgpmTorus, 5, 5);
     f->model = f->dir.path() / "mljgpm.json";
     WriteModelFile(f->model, *model);
 

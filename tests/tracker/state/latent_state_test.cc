@@ -5,24 +5,14 @@
 
 #include <gtest/gtest.h>
 
-#include "io/base/text_reader.h"
-#include "io/gait/gait_dataset.h"
-#include "prior/model/train.h"
-#include "test_support.h"
+#include "prior/prior_test_support.h"
 #include "tracker/state/random.h"
 
 namespace jgpm {
 namespace {
 
 TEST(LatentState, DynamicsAdvanceAsFarAsTheTimePassed) {
-  std::vector<TrialId> trials = test::SplitTrials("train");
-  trials.resize(3);
-  const GaitDataset walks = PrepareGaitDataset(test::CmuRoot(), "three", trials, GaitCycleOptions{});
-  TrainingOptions training;
-  training.kind = ModelKind::kGpdm;
-  training.full.max_iterations = 5;
-  const auto model = TrainGaitModel(
-      walks, {walks.trials[0].id.name, ReadTextFile(test::CmuRoot() / walks.trials[0].asf, "asf")}, training);
+  const auto model = test::TrainOnFirstWalks(ModelKind::kGpdm, 3, 5);
   ASSERT_TRUE(model->HasDynamics());
   const PoseTable table(*model, {});
   LatentDynamics quiet;  // no noise: the mean step alone

@@ -9,10 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/base/text_reader.h"
-#include "io/gait/gait_dataset.h"
-#include "prior/model/train.h"
-#include "test_support.h"
+#include "prior/prior_test_support.h"
 #include "tracker/state/random.h"
 
 namespace jgpm {
@@ -51,16 +48,7 @@ Moments ClampedNormal(double mu, double sigma, double lo, double hi) {
 
 // A multi-layer torus trained briefly on four walks: the layers' range is what matters here.
 const GaitModel& Model() {
-  static const std::unique_ptr<GaitModel> model = [] {
-    std::vector<TrialId> trials = test::SplitTrials("train");
-    trials.resize(4);
-    const GaitDataset walks = PrepareGaitDataset(test::CmuRoot(), "four", trials, GaitCycleOptions{});
-    TrainingOptions training;
-    training.kind = ModelKind::kMljgpmTorus;
-    training.full.max_iterations = 3;
-    return TrainGaitModel(walks, {walks.trials[0].id.name, ReadTextFile(test::CmuRoot() / walks.trials[0].asf, "asf")},
-                          training);
-  }();
+  static const std::unique_ptr<GaitModel> model = test::TrainOnFirstWalks(ModelKind::kMljgpmTorus, 4, 3);
   return *model;
 }
 
