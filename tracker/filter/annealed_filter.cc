@@ -55,6 +55,15 @@ void AnnealedFilter::Shift(int dimension, double offset, int every) {
   }
 }
 
+void AnnealedFilter::Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame) {
+  const PlacementIndex p = model_.placement();
+  for (int i = every - 1; i < particles_.rows(); i += every) {
+    Random random(options_.seed, frame, 5000, i);
+    particles_(i, p.x) = floor_mm.x() + std_mm * random.Normal();
+    particles_(i, p.z) = floor_mm.y() + std_mm * random.Normal();
+  }
+}
+
 void AnnealedFilter::Predict(double dt, int frame) {
   pool_->For(static_cast<int>(particles_.rows()), [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {

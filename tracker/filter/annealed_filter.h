@@ -71,6 +71,10 @@ class AnnealedFilter {
   // Adds `offset` to one coordinate of every particle, or of every `every`-th one (then
   // normalises them).
   void Shift(int dimension, double offset, int every = 1);
+  // Moves every `every`-th particle's place on the floor to about `floor_mm` (normal, `std_mm`
+  // each way), the rest of its state kept: a second look where the masks say the person
+  // is, which the annealing then keeps or drops. `frame` keys the random numbers.
+  void Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame);
   // The particles' mean (they are equally weighted between frames), periodic coordinates
   // about the first particle.
   Eigen::VectorXd Mean() const;

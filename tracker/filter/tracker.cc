@@ -49,6 +49,8 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
   else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
+  else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0)) problem = "bad relocation options";
+  else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
   if (problem) {
     if (why) *why = problem;  // `why` may be null
     return false;
@@ -181,7 +183,9 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   // A start that knows the pose (--init truth) knows which leg is forward.
   frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
   bad_frames_ = 0;
+  hidden_ = false;
   start_boxes_.clear();
+  last_good_time_s_ = -1e9;  // nothing to hold to until a good frame
 }
 
 bool Tracker::StartFromFrames(const std::vector<Frame>& frames) {
@@ -260,7 +264,45 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       frames_since_start_ < options_.mirror_frames)
     filter_->Shift(0, 0.5, options_.mirror_every);
   ++frames_since_start_;
-  if (frame.dropped) {
+  // Where the dynamics put the person now (walking on at their speed and heading).
+  Eigen::Vector2d predicted_floor_mm;
+  {
+    const Eigen::VectorXd mean = filter_->Mean();
+    const PlacementIndex p = state_model_->placement();
+    predicted_floor_mm = Eigen::Vector2d(mean[p.x], mean[p.z]);
+  }
+  // How far from there a sighting may be and still be the person: the locator's own error
+  // (half a metre) and 0.5 m/s of speed the prediction may have wrong since the last frame
+  // explained well.
+  const auto near_prediction = [&](const PersonSighting& s) {
+    return s.found &&
+           (s.floor_mm - predicted_floor_mm).norm() <= 500 + 500 * (frame.time_s - last_good_time_s_);
+  };
+  if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
+    const PersonSighting seen = LocatePerson(cameras_, frame.masks);
+    const double away = (seen.floor_mm - predicted_floor_mm).norm();
+    const double reach = options_.relocate_distance_mm + 2000 * options_.relocate_every * std::max(dt, 1.0 / 60);
+    if (seen.found && seen.feet_seen && away > options_.relocate_distance_mm && away <= reach) {
+      filter_->Relocate(seen.floor_mm, 120, options_.relocate_share, frame.index);
+    }
+  }
+  if (hidden_ && !frame.dropped) {
+    // Hidden: predicted until the person is seen near where the dynamics put them (then
+    // tracked again), or for max_hidden_s at most (then a restart from whoever is seen).
+    const PersonSighting seen = LocatePerson(cameras_, frame.masks);
+    const double since = frame.time_s - last_good_time_s_;
+    if (near_prediction(seen)) {
+      hidden_ = false;
+    } else if (since >= options_.max_hidden_s) {
+      hidden_ = false;
+      started_ = false;
+      out.status = TrackStatus::kLost;
+      if (seen.found) StartFromFrames({frame});
+      finish(&out);
+      return out;
+    }
+  }
+  if (frame.dropped || hidden_) {
     out.status = TrackStatus::kPredicted;
     out.state = filter_->Mean();
     ExactPose(out.state, &out.pose_deg, &out.joints_mm);
@@ -355,16 +397,26 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // estimate is out of its view says nothing. When the estimate explains the views
   // badly, is anyone there at all? A person-sized blob standing on the floor in some
   // camera, not a segmentation's specks (LocatePerson).
-  bool nobody = false;
+  PersonSighting seen;
   if (out.MeanIou() < options_.lost_iou) {
-    nobody = !LocatePerson(cameras_, frame.masks).found;
+    seen = LocatePerson(cameras_, frame.masks);
     ++bad_frames_;
   } else {
     bad_frames_ = 0;
+    last_good_time_s_ = frame.time_s;
   }
+  const bool nobody = bad_frames_ > 0 && !seen.found;
   bool evidence = false;  // some camera sees someone where expected, or draws the estimate
   for (const CameraScore& c : out.cameras) evidence = evidence || c.observed_px > 0 || c.model_px > 0;
-  if (nobody || bad_frames_ >= options_.lost_frames) {
+  // Someone seen far from where the dynamics put the person is someone or something else:
+  // the person is hidden (an occluder, a failed segmentation), and is predicted, not
+  // restarted on it, for up to max_hidden_s.
+  const bool elsewhere =
+      seen.found && frame.time_s - last_good_time_s_ < options_.max_hidden_s && !near_prediction(seen);
+  if (bad_frames_ >= options_.lost_frames && elsewhere) {
+    out.status = TrackStatus::kPredicted;
+    hidden_ = true;
+  } else if (nobody || bad_frames_ >= options_.lost_frames) {
     out.status = TrackStatus::kLost;
     // Start again from the masks as soon as someone is seen.
     started_ = false;

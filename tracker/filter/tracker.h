@@ -73,6 +73,20 @@ struct TrackerOptions {
   int mirror_streak = 5;          // ...once it has fitted better this many frames in a row
   int mirror_every = 10;          // every k-th particle is moved half a cycle on each frame...
   int mirror_frames = 30;         // ...of the first this many after a start from the masks
+  // A second look: every relocate_every frames (0: never) the masks are searched for the
+  // person as at a start; when they put them more than relocate_distance_mm from the
+  // prediction, but no farther than a brisk walker goes in the frames since the last
+  // look (2 m/s) and another relocate_distance_mm, every relocate_share-th particle is
+  // moved there (the annealing keeps them if the silhouettes agree). The distance is
+  // beyond the search's own error with clean masks (under 300 mm: person_locator_test),
+  // the share the mirror's; farther is someone or something else.
+  int relocate_every = 5;
+  double relocate_distance_mm = 300;
+  int relocate_share = 10;
+  // A person explained badly while someone is seen where they could not have walked to is
+  // taken for hidden (predicted, not restarted on what is seen) for at most this long: a
+  // walker passes behind a pillar or a parked car in a second or two.
+  double max_hidden_s = 2;
 
   bool Check(std::string* why) const;
 };
@@ -151,6 +165,8 @@ class Tracker {
   std::vector<cv::Rect> start_boxes_;
   double last_time_s_ = 0;
   int bad_frames_ = 0;
+  bool hidden_ = false;  // explained badly while someone is seen elsewhere: predicted
+  double last_good_time_s_ = -1e9;  // the last frame explained well
   int frames_since_start_ = 0;
   // Half a cycle on swaps the legs (a JGPM-family model tracked on its manifold).
   bool legs_by_phase_ = false;

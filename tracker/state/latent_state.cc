@@ -47,7 +47,7 @@ void LatentStateModel::Predict(double dt, Random* r, double* s) const {
   for (int d = 0; d < 3; ++d) s[d] = x[d] + k * d_.latent_noise * step_ * r->Normal();
   s[3] += s[6] * dt * std::sin(s[5]) + k * d_.root_noise_mm * r->Normal();
   s[4] += s[6] * dt * std::cos(s[5]) + k * d_.root_noise_mm * r->Normal();
-  s[5] += k * d_.heading_noise_deg * kDeg * r->Normal();
+  s[5] += k * (r->Uniform() < d_.turn_share ? d_.turn_noise_deg : d_.heading_noise_deg) * kDeg * r->Normal();
   s[6] += k * d_.speed_noise_mm_s * r->Normal();
   s[7] += k * d_.size_noise * r->Normal();
   s[8] += k * d_.width_noise * r->Normal();

@@ -19,7 +19,8 @@ namespace jgpm {
 struct LatentDynamics {
   double latent_noise = 0.5;        // in mean training steps (GPDM: around the dynamics' mean)
   double speed_noise_mm_s = 30;
-  double heading_noise_deg = 2.5;  // as ManifoldDynamics' (tracker/state/manifold_state.h)
+  double heading_noise_deg = 1.0;  // a mixture, as ManifoldDynamics' (tracker/state/manifold_state.h)
+  double turn_share = 0.1, turn_noise_deg = 6.0;
   double root_noise_mm = 8;
   double size_noise = 0.001;
   double width_noise = kWidthNoise;

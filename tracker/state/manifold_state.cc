@@ -58,7 +58,7 @@ void ManifoldStateModel::Predict(double dt, Random* r, double* s) const {
   s[2] += k * d_.scale_noise * r->Normal();
   s[3] += speed * dt * std::sin(s[5]) + k * d_.root_noise_mm * r->Normal();
   s[4] += speed * dt * std::cos(s[5]) + k * d_.root_noise_mm * r->Normal();
-  s[5] += k * d_.heading_noise_deg * kDeg * r->Normal();
+  s[5] += k * (r->Uniform() < d_.turn_share ? d_.turn_noise_deg : d_.heading_noise_deg) * kDeg * r->Normal();
   s[6] += k * d_.cadence_noise * r->Normal();
   s[7] += k * d_.size_noise * r->Normal();
   s[8] += k * d_.width_noise * r->Normal();

@@ -248,6 +248,88 @@ TEST(Tracker, EachStartDrawsItsOwnParticles) {
   EXPECT_NE(a.filter().particles(), b.filter().particles());
 }
 
+// The mean IoU counts the cameras that see someone where the person is expected or draw
+// the estimate: one that does neither is no evidence (it averaged in an IoU of 0, and two
+// cameras with one out of view restarted every 5 frames). Hand-computed.
+TEST(TrackedFrame, MeanIouLeavesOutCamerasWithNoEvidence) {
+  TrackedFrame f;
+  CameraScore seen, away;
+  seen.model_px = 100;
+  seen.observed_px = 100;
+  seen.overlap_px = 80;  // IoU 80 / 120
+  f.cameras = {seen, away};
+  EXPECT_NEAR(f.MeanIou(), 80.0 / 120, 1e-12);
+  away.observed_px = 50;  // someone seen there, nothing drawn: evidence, IoU 0
+  f.cameras = {seen, away};
+  EXPECT_NEAR(f.MeanIou(), 0.5 * 80.0 / 120, 1e-12);
+  f.cameras = {CameraScore(), CameraScore()};
+  EXPECT_EQ(f.MeanIou(), 1.0);  // nobody anywhere, nothing drawn: nothing wrong
+}
+
+// Masks of a segmentation's specks only (the person gone): nobody is in view at once, not
+// after five frames of tracking specks (every mask was "someone" while any pixel was set).
+TEST(Tracker, SpecksAreNobody) {
+  const Fixture& f = Shared();
+  const auto model = ReadModelFile(f.model);
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  TrackerOptions options;
+  options.annealing.particles = 60;
+  Tracker tracker(*model, truth.cameras, options);
+  ASSERT_TRUE(tracker.StartFromFrames({ClipFrameAt(truth, f.clip, 0)}));
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(tracker.Step(ClipFrameAt(truth, f.clip, k)).status, TrackStatus::kTracked) << k;
+  Frame specks = ClipFrameAt(truth, f.clip, 6);
+  std::mt19937 rng(4);
+  for (cv::Mat& mask : specks.masks) {
+    mask.setTo(0);
+    for (int s = 0; s < 12; ++s) mask.at<uint8_t>(rng() % mask.rows, rng() % mask.cols) = 255;
+  }
+  EXPECT_EQ(tracker.Step(specks).status, TrackStatus::kLost);
+}
+
+// The walker hidden for half a second while a walker-sized blob shows up a metre and more
+// away in both views: the person is predicted, not restarted on the blob, and tracked
+// again where they reappear.
+TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
+  const Fixture& f = Shared();
+  const auto model = ReadModelFile(f.model);
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  TrackerOptions options;
+  options.annealing.particles = 100;
+  options.annealing.seed = 3;
+  Tracker tracker(*model, truth.cameras, options);
+  std::vector<Frame> first;
+  for (int k = 0; k < 5; ++k) first.push_back(ClipFrameAt(truth, f.clip, k));
+  ASSERT_TRUE(tracker.StartFromFrames(first));
+  std::vector<TrackStatus> statuses;
+  std::vector<double> root_error;
+  for (int k = 0; k < kFrames; ++k) {
+    Frame frame = ClipFrameAt(truth, f.clip, k);
+    if (k >= 8 && k < 22) {
+      for (cv::Mat& mask : frame.masks) {  // the walker's own silhouette, 55 px aside
+        cv::Mat moved = cv::Mat::zeros(mask.size(), mask.type());
+        mask(cv::Rect(0, 0, mask.cols - 55, mask.rows)).copyTo(moved(cv::Rect(55, 0, mask.cols - 55, mask.rows)));
+        mask = moved;
+      }
+    }
+    const TrackedFrame out = tracker.Step(frame);
+    statuses.push_back(out.status);
+    const Eigen::Vector3d d = out.state.size() ? Eigen::Vector3d(out.joints_mm.col(0) - truth.frames[k].joints_mm.col(0))
+                                               : Eigen::Vector3d::Constant(1e9);
+    root_error.push_back(std::hypot(d.x(), d.z()));
+  }
+  std::string line;
+  for (TrackStatus s : statuses) line += TrackStatusName(s)[0];
+  std::printf("statuses %s; root error while hidden (frames 8-21): max %.0f mm\n", line.c_str(),
+              *std::max_element(root_error.begin() + 8, root_error.begin() + 22));
+  for (int k = 8; k < 22; ++k) {
+    EXPECT_NE(statuses[k], TrackStatus::kLost) << k;
+    EXPECT_LT(root_error[k], 600) << k;  // never on the blob (well over a metre away)
+  }
+  EXPECT_EQ(statuses[20], TrackStatus::kPredicted);
+  EXPECT_EQ(statuses[kFrames - 1], TrackStatus::kTracked);
+  EXPECT_LT(root_error[kFrames - 1], 150);
+}
+
 // The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).
 TEST(Tracker, TheSeedReachesTheRefinement) {
   const Fixture& f = Shared();

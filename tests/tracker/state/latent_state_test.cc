@@ -16,7 +16,8 @@ TEST(LatentState, DynamicsAdvanceAsFarAsTheTimePassed) {
   ASSERT_TRUE(model->HasDynamics());
   const PoseTable table(*model, {});
   LatentDynamics quiet;  // no noise: the mean step alone
-  quiet.latent_noise = quiet.speed_noise_mm_s = quiet.heading_noise_deg = quiet.root_noise_mm = quiet.size_noise = 0;
+  quiet.latent_noise = quiet.speed_noise_mm_s = quiet.heading_noise_deg = quiet.turn_noise_deg = 0;
+  quiet.root_noise_mm = quiet.size_noise = 0;
   const LatentStateModel states(*model, table, quiet);
   const Eigen::Vector3d x0 = model->latent().row(12).transpose();
   const Eigen::Vector3d x1 = model->NextLatent(x0, nullptr), x2 = model->NextLatent(x1, nullptr);
