@@ -305,11 +305,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   if (frame.dropped || hidden_) {
     out.status = TrackStatus::kPredicted;
     out.state = filter_->Mean();
-    ExactPose(out.state, &out.pose_deg, &out.joints_mm);
-    out.prior_joints_mm = out.joints_mm;
-    out.size = out.state[state_model_->placement().size];
-    out.width = out.state[state_model_->placement().width];
-    out.heading_rad = out.state[state_model_->placement().heading];
+    SetEstimate(&out);
     finish(&out);
     return out;
   }
@@ -346,12 +342,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       mirror_streak_ = 0;
     }
   }
-  ExactPose(out.state, &out.pose_deg, &out.joints_mm);
-  out.prior_joints_mm = out.joints_mm;
+  SetEstimate(&out);
   const PlacementIndex p = state_model_->placement();
-  out.size = out.state[p.size];
-  out.width = out.state[p.width];
-  out.heading_rad = out.state[p.heading];
   if (refiner_) {
     const Eigen::Vector3d latent = model_.HasManifold()
                                        ? model_.ManifoldToLatent({out.state[0], out.state[1], out.state[2]})
@@ -374,23 +366,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     }
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
     likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
-    if (alignment_.active() && out.MeanIou() >= options_.lost_iou) {
-      // The cameras that see the estimate line their views up with it a little more.
-      const int n = static_cast<int>(cameras_.size());
-      std::vector<cv::Mat> silhouettes(n), masks(n);
-      std::vector<cv::Rect> boxes(n);
-      pool_.For(n, [&](int begin, int end, int) {
-        for (int c = begin; c < end; ++c) {
-          masks[c] = observations[c].mask();
-          boxes[c] = observations[c].region();
-          if (out.cameras[c].model_px == 0 || out.cameras[c].observed_px == 0) continue;
-          BitMask canvas(cameras_[c].width, cameras_[c].height);
-          likelihood_.renderer(c).Draw(capsules, &canvas);
-          silhouettes[c] = canvas.ToMat();
-        }
-      });
-      alignment_.Update(silhouettes, masks, boxes, out.joints_mm.col(0));
-    }
+    if (alignment_.active() && out.MeanIou() >= options_.lost_iou) AlignViews(capsules, observations, out);
   }
   // Evidence of loss: the cameras that see something where the person is expected, or
   // draw the estimate, explaining it badly. A camera that sees nobody there and whose
@@ -427,6 +403,33 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   finish(&out);
   return out;
+}
+
+void Tracker::SetEstimate(TrackedFrame* out) const {
+  ExactPose(out->state, &out->pose_deg, &out->joints_mm);
+  out->prior_joints_mm = out->joints_mm;
+  const PlacementIndex p = state_model_->placement();
+  out->size = out->state[p.size];
+  out->width = out->state[p.width];
+  out->heading_rad = out->state[p.heading];
+}
+
+void Tracker::AlignViews(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,
+                         const TrackedFrame& out) {
+  const int n = static_cast<int>(cameras_.size());
+  std::vector<cv::Mat> silhouettes(n), masks(n);
+  std::vector<cv::Rect> boxes(n);
+  pool_.For(n, [&](int begin, int end, int) {
+    for (int c = begin; c < end; ++c) {
+      masks[c] = observations[c].mask();
+      boxes[c] = observations[c].region();
+      if (out.cameras[c].model_px == 0 || out.cameras[c].observed_px == 0) continue;  // no say
+      BitMask canvas(cameras_[c].width, cameras_[c].height);
+      likelihood_.renderer(c).Draw(capsules, &canvas);
+      silhouettes[c] = canvas.ToMat();
+    }
+  });
+  alignment_.Update(silhouettes, masks, boxes, out.joints_mm.col(0));
 }
 
 void Tracker::ExactPose(const Eigen::VectorXd& state, Eigen::VectorXd* pose_deg, Eigen::Matrix3Xd* joints_mm) const {

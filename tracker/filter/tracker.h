@@ -148,6 +148,12 @@ class Tracker {
 
  private:
   std::vector<cv::Rect> Regions(const std::vector<Frame>* frames) const;
+  // The frame's pose, bone ends, size, width and heading from out->state (as ExactPose).
+  void SetEstimate(TrackedFrame* out) const;
+  // The cameras that see the estimate (placed as `capsules`) line their views up with it
+  // a little more (ViewAlignment).
+  void AlignViews(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,
+                  const TrackedFrame& out);
 
   const GaitModel& model_;
   std::vector<Camera> cameras_;
