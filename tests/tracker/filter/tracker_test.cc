@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 
@@ -328,6 +329,32 @@ TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
   EXPECT_EQ(statuses[20], TrackStatus::kPredicted);
   EXPECT_EQ(statuses[kFrames - 1], TrackStatus::kTracked);
   EXPECT_LT(root_error[kFrames - 1], 150);
+}
+
+// The start's guess from the first 15 frames' masks against the clip's truth: the place
+// at the first frame (the fitted walk through the places found), the heading and speed
+// of travel.
+TEST(Tracker, GuessReadsThePlaceHeadingAndSpeedOfTheWalk) {
+  const Fixture& f = Shared();
+  const auto model = ReadModelFile(f.model);
+  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  const Tracker tracker(*model, truth.cameras, TrackerOptions{});
+  std::vector<Frame> frames;
+  for (int k = 0; k < 15; ++k) frames.push_back(ClipFrameAt(truth, f.clip, k));
+  InitialGuess guess;
+  ASSERT_TRUE(tracker.Guess(frames, &guess));
+  const Eigen::Vector3d a = truth.frames[0].joints_mm.col(0), b = truth.frames[14].joints_mm.col(0);
+  const Eigen::Vector2d travel(b.x() - a.x(), b.z() - a.z());
+  const double seconds = truth.frames[14].time_s - truth.frames[0].time_s;
+  const double heading = std::atan2(travel.x(), travel.y());
+  std::printf("guess: floor %.0f mm off, heading %.1f deg off, speed %.0f (truth %.0f) mm/s, size %.2f\n",
+              (guess.floor_mm - Eigen::Vector2d(a.x(), a.z())).norm(),
+              std::remainder(guess.heading_rad - heading, 2 * std::numbers::pi) * 180 / std::numbers::pi,
+              guess.speed_mm_s, travel.norm() / seconds, guess.size);
+  EXPECT_LT((guess.floor_mm - Eigen::Vector2d(a.x(), a.z())).norm(), 300);  // the locator's error
+  EXPECT_LT(std::abs(std::remainder(guess.heading_rad - heading, 2 * std::numbers::pi)), 20 * std::numbers::pi / 180);
+  EXPECT_NEAR(guess.speed_mm_s, travel.norm() / seconds, 0.25 * travel.norm() / seconds);
+  EXPECT_LT(guess.heading_std_rad, std::numbers::pi);  // a heading was read, not "any"
 }
 
 // The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).

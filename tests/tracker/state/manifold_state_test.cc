@@ -72,6 +72,32 @@ TEST(ManifoldState, SampleReadsNothingOfTheBufferItWrites) {
   }
 }
 
+// One frame of the dynamics without noise, by hand: the phase advances by cadence x dt,
+// the root by the stride (for the gait point and stride scale, times the size) per cycle
+// along the heading (0: +z), everything else stays; the phase wraps.
+TEST(ManifoldState, PredictWithoutNoiseIsTheWalkByHand) {
+  const PoseTable table(Model(), {});
+  ManifoldDynamics quiet;
+  quiet.phase_noise = quiet.cadence_noise = quiet.gait_noise = quiet.scale_noise = quiet.heading_noise_deg = 0;
+  quiet.turn_noise_deg = quiet.root_noise_mm = quiet.size_noise = quiet.width_noise = 0;
+  const ManifoldStateModel model(Model(), table, quiet);
+  const double gait = 0.5 * (table.lo()[1] + table.hi()[1]), heading = 30 * std::numbers::pi / 180;
+  double s[9] = {0.9, gait, 1.0, 100, -200, heading, 1.2, 1.1, 1.05};
+  const double stride = table.StrideMm(gait, 1.0) * 1.1;  // mm per cycle at this size
+  Random random(1);
+  model.Predict(0.2, &random, s);
+  EXPECT_NEAR(s[0], 0.9 + 1.2 * 0.2 - 1, 1e-12);  // wrapped
+  EXPECT_NEAR(s[3], 100 + stride * 1.2 * 0.2 * std::sin(heading), 1e-9);
+  EXPECT_NEAR(s[4], -200 + stride * 1.2 * 0.2 * std::cos(heading), 1e-9);
+  EXPECT_DOUBLE_EQ(s[1], gait);
+  EXPECT_DOUBLE_EQ(s[2], 1.0);
+  EXPECT_DOUBLE_EQ(s[5], heading);
+  EXPECT_DOUBLE_EQ(s[6], 1.2);
+  EXPECT_DOUBLE_EQ(s[7], 1.1);
+  EXPECT_DOUBLE_EQ(s[8], 1.05);
+  EXPECT_GT(stride, 500);  // a walker's stride, not a shuffle
+}
+
 TEST(ManifoldState, AStartDrawsTheStrideScaleNearTheRecordedStrides) {
   const GaitModel* model = &Model();
   const PoseTable table(*model, {});
