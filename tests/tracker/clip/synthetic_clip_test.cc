@@ -458,13 +458,14 @@ TEST(ClipFormat, GroundTruthRoundTripAndMalformedInput) {
   EXPECT_TRUE(other_truth.body.bag);
   EXPECT_EQ(other_truth.body.body_seed, 4u);
   EXPECT_EQ(other_truth.render_cameras.size(), 2u);
-  for (const auto& [from, to, phrase] : std::vector<std::tuple<std::string, std::string, std::string>>{
+  for (const auto& [before, after, phrase] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"\"rig\": \"surveillance\"", "\"rig\": \"blimp\"", "scene.rig"},
            {"\"clothing\": \"skirt\"", "\"clothing\": \"cape\"", "body_model.clothing"},
            {"\"calibration_error\": 1.0", "\"calibration_error\": -1.0", "scene.calibration_error"},
            {"\"render_cameras\": [", "\"render_cameras\": [{},", "render_cameras"}}) {
-    SCOPED_TRACE(from);
-    test::ExpectInputError([&] { ParseGroundTruth(test::Replace(other_text, from, to), "gt.json"); }, {"gt.json", phrase});
+    SCOPED_TRACE(before);
+    const std::string bad = test::Replace(other_text, before, after);  // (clang 14 cannot capture a binding)
+    test::ExpectInputError([&bad] { ParseGroundTruth(bad, "gt.json"); }, {"gt.json", phrase});
   }
   EXPECT_EQ(truth.cameras.size(), 2u);
   EXPECT_EQ(truth.joint_names.size(), walk.skeleton.bones.size());
