@@ -22,7 +22,7 @@ TEST(LatentState, DynamicsAdvanceAsFarAsTheTimePassed) {
   const Eigen::Vector3d x0 = model->latent().row(12).transpose();
   const Eigen::Vector3d x1 = model->NextLatent(x0, nullptr), x2 = model->NextLatent(x1, nullptr);
   auto predict = [&](double dt) {
-    double s[8] = {x0.x(), x0.y(), x0.z(), 100, 200, 0, 1200, 1};
+    double s[9] = {x0.x(), x0.y(), x0.z(), 100, 200, 0, 1200, 1, 1};
     Random random(1);
     states.Predict(dt, &random, s);
     return std::pair{Eigen::Vector3d(s[0], s[1], s[2]), Eigen::Vector2d(s[3], s[4])};

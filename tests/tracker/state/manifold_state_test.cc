@@ -59,14 +59,15 @@ const GaitModel& Model() {
 TEST(ManifoldState, SampleReadsNothingOfTheBufferItWrites) {
   const PoseTable table(Model(), {});
   const ManifoldStateModel model(Model(), table);
-  std::vector<double> clean(8, 0.0);
-  const std::unique_ptr<double[]> dirty(new double[8]);  // uninitialised on purpose
+  const int d = model.Dimension();
+  std::vector<double> clean(d, 0.0);
+  const std::unique_ptr<double[]> dirty(new double[d]);  // uninitialised on purpose
   InitialGuess guess;
   guess.speed_mm_s = 1300;
   Random a(3, 1), b(3, 1);
   model.Sample(guess, &a, clean.data());
   model.Sample(guess, &b, dirty.get());
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < d; ++k) {
     EXPECT_TRUE(std::isfinite(dirty[k])) << k;
     EXPECT_EQ(dirty[k], clean[k]) << k;
   }
