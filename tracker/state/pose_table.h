@@ -32,7 +32,10 @@ struct PoseTableOptions {
   int scale_nodes = 8;
   int latent_nodes = 32;
   double latent_margin = 0.15;
-  int density_neighbours = 8;  // the kernel density's width: k-th nearest neighbour (see below)
+  // The kernel density's width: k-th nearest neighbour (see below). On the realism tuning
+  // clips (5 clips, seeds 1-3, bodytrack 14 mean absolute mm) 8 gives 127.5, 4 gives 139.8
+  // and 16 gives 132.3.
+  int density_neighbours = 8;
   int threads = 1;  // for building
 
   bool Check(std::string* why) const;
