@@ -110,11 +110,14 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
   ImageCapsule c;
   for (const Capsule& capsule : capsules) {
     if (!projector_.Project(capsule, &c)) continue;
-    const Eigen::Vector2d d = c.b - c.a;
+    // In the capsule's round frame (silhouette.h), where its ends are discs.
+    const Eigen::Vector2d ra_centre = c.Round(c.a), rb_centre = c.Round(c.b);
+    const Eigen::Vector2d d = rb_centre - ra_centre;
     const double length = d.norm();
-    // The hull: both discs, and, unless one disc holds the other, the quadrilateral between
-    // the outer tangents' touching points (u along the axis, n its normal, sin(phi) =
-    // (ra - rb) / |d|: the tangents touch in directions +-n cos(phi) + u sin(phi)).
+    // The hull: both ends, and, unless one holds the other, the quadrilateral between the
+    // outer tangents' touching points (round frame: u along the axis, n its normal,
+    // sin(phi) = (ra - rb) / |d|, the tangents touch in directions +-n cos(phi) + u sin(phi)),
+    // mapped to the image.
     const bool quad = length > std::abs(c.ra - c.rb) + 1e-9;
     Eigen::Vector2d q[4];
     Eigen::Vector2d ta = Eigen::Vector2d::Zero(), tb = Eigen::Vector2d::Zero();  // used only with quad
@@ -123,16 +126,25 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
       const double sin_phi = (c.ra - c.rb) / length, cos_phi = std::sqrt(std::max(0.0, 1 - sin_phi * sin_phi));
       ta = n * cos_phi + u * sin_phi;
       tb = -n * cos_phi + u * sin_phi;
-      q[0] = c.a + c.ra * ta;
-      q[1] = c.b + c.rb * ta;
-      q[2] = c.b + c.rb * tb;
-      q[3] = c.a + c.ra * tb;
+      q[0] = c.Image(ra_centre + c.ra * ta);
+      q[1] = c.Image(rb_centre + c.rb * ta);
+      q[2] = c.Image(rb_centre + c.rb * tb);
+      q[3] = c.Image(ra_centre + c.ra * tb);
     }
+    // Each end's ellipse: p in it when (p - centre)' M (p - centre) <= 1, M = (I + (1 /
+    // stretch^2 - 1) axis axis') / r^2; its half height is r |row y of (I + (stretch - 1)
+    // axis axis')|.
+    const double squeeze = 1 / (c.stretch * c.stretch) - 1;
+    const double m00 = 1 + squeeze * c.axis.x() * c.axis.x(), m01 = squeeze * c.axis.x() * c.axis.y(),
+                 m11 = 1 + squeeze * c.axis.y() * c.axis.y();
+    const double half_height = std::hypot((c.stretch - 1) * c.axis.x() * c.axis.y(),
+                                          1 + (c.stretch - 1) * c.axis.y() * c.axis.y());
     // Rows v0..v1 (clamped to the image; coordinates are bounded by the projector's culling,
     // so the int conversions are defined). Each non-horizontal quad edge as x = x0 + (v -
     // y0) * slope over [y0, y1], set up once per capsule (a horizontal edge's ends are
     // also its neighbours' ends, so it adds nothing).
-    const double top = std::min(c.a.y() - c.ra, c.b.y() - c.rb), bottom = std::max(c.a.y() + c.ra, c.b.y() + c.rb);
+    const double top = std::min(c.a.y() - c.ra * half_height, c.b.y() - c.rb * half_height);
+    const double bottom = std::max(c.a.y() + c.ra * half_height, c.b.y() + c.rb * half_height);
     const int v0 = std::max(0, CeilInt(top)), v1 = std::min(mask->height() - 1, FloorInt(bottom));
     if (v1 < v0) continue;
     struct Edge {
@@ -152,18 +164,20 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
     const double ra2 = c.ra * c.ra, rb2 = c.rb * c.rb;
     const int last_column = mask->width() - 1;
     int drawn_first = mask->height(), drawn_last = -1;
+    // Row v's span of the ellipse at `centre` with r^2 = `r2`: m00 x^2 + 2 m01 x dy +
+    // m11 dy^2 <= r2 in x (relative to the centre).
+    const auto end_span = [&](const Eigen::Vector2d& centre, double r2, double v, double* left, double* right) {
+      const double dy = v - centre.y();
+      const double b = m01 * dy, disc = b * b - m00 * (m11 * dy * dy - r2);
+      if (disc < 0) return;
+      const double h = std::sqrt(disc);
+      *left = std::min(*left, centre.x() + (-b - h) / m00);
+      *right = std::max(*right, centre.x() + (-b + h) / m00);
+    };
     for (int v = v0; v <= v1; ++v) {
       double left = 1e300, right = -1e300;
-      const double da = v - c.a.y(), ha2 = ra2 - da * da;
-      if (ha2 >= 0) {
-        const double h = std::sqrt(ha2);
-        left = c.a.x() - h, right = c.a.x() + h;
-      }
-      const double db = v - c.b.y(), hb2 = rb2 - db * db;
-      if (hb2 >= 0) {
-        const double h = std::sqrt(hb2);
-        left = std::min(left, c.b.x() - h), right = std::max(right, c.b.x() + h);
-      }
+      end_span(c.a, ra2, v, &left, &right);
+      end_span(c.b, rb2, v, &left, &right);
       for (int e = 0; e < num_edges; ++e) {
         const Edge& edge = edges[e];
         if (v < edge.y0 || v > edge.y1) continue;
@@ -186,10 +200,11 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
       // Points on the arc of (centre, radius) from unit direction `start`, turning by `span`
       // radians: rotations of one another, so one sine and cosine per arc.
       auto arc = [&](const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start, double span) {
-        const int steps = std::max(2, static_cast<int>(std::ceil(std::abs(span) * radius / outline_step_px)));
+        const int steps =
+            std::max(2, static_cast<int>(std::ceil(std::abs(span) * radius * c.stretch / outline_step_px)));
         const double cs = std::cos(span / steps), sn = std::sin(span / steps);
         for (int k = 0; k <= steps; ++k) {
-          outline->push_back((centre + radius * start).cast<float>());
+          outline->push_back(c.Image(centre + radius * start).cast<float>());
           start = Eigen::Vector2d(cs * start.x() - sn * start.y(), sn * start.x() + cs * start.y());
         }
       };
@@ -199,10 +214,10 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
         const double half = std::numbers::pi / 2 - std::asin(std::clamp((c.ra - c.rb) / length, -1.0, 1.0));
         segment(q[0], q[1]);
         segment(q[2], q[3]);
-        arc(c.b, c.rb, ta, -2 * half);
-        arc(c.a, c.ra, tb, -(2 * std::numbers::pi - 2 * half));
+        arc(rb_centre, c.rb, ta, -2 * half);
+        arc(ra_centre, c.ra, tb, -(2 * std::numbers::pi - 2 * half));
       } else {
-        arc(c.ra >= c.rb ? c.a : c.b, std::max(c.ra, c.rb), Eigen::Vector2d(1, 0), 2 * std::numbers::pi);
+        arc(c.ra >= c.rb ? ra_centre : rb_centre, std::max(c.ra, c.rb), Eigen::Vector2d(1, 0), 2 * std::numbers::pi);
       }
     }
   }

@@ -1,5 +1,5 @@
 // The particle filter's silhouettes, packed 64 pixels to a word: each capsule's image (the
-// convex hull of its two end circles, as tracker/body/silhouette.h projects them) is filled row
+// convex hull of its two end ellipses, as tracker/body/silhouette.h projects them) is filled row
 // by row with the exact span of the hull on that row (a pixel is in when its centre is),
 // so a body costs a few hundred span writes and comparing it with a mask a few hundred
 // AND + popcount word operations, instead of per-pixel fills and counts.

@@ -36,21 +36,24 @@ double MaxMonotoneRadius(const std::vector<double>& distortion) {
   return kCap;
 }
 
-// Appends points of the arc of circle (centre, radius) starting in unit direction `start`
-// and turning by `span` (radians, negative: clockwise in image coordinates), both ends
-// included. Consecutive points are rotations of each other, so an arc costs two sines
-// and cosines however many points it has (this runs for every part of every particle).
-void AppendArc(const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start, double span,
-               std::vector<cv::Point>* points) {
+// Appends points of the arc of circle (centre, radius) of the capsule's round frame
+// starting in unit direction `start` and turning by `span` (radians, negative: clockwise
+// in image coordinates), both ends included, mapped to the image. Consecutive points are
+// rotations of each other, so an arc costs two sines and cosines however many points it
+// has (this runs for every part of every particle).
+void AppendArc(const ImageCapsule& capsule, const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start,
+               double span, std::vector<cv::Point>* points) {
   // A circle smaller than the sagitta bound still gets three chords: a step just under
-  // half a turn (not pi, which would give a full circle two).
+  // half a turn (not pi, which would give a full circle two). The bound holds on the
+  // ellipse's longer axis.
+  const double longest = radius * capsule.stretch;
   const double step =
-      radius > kMaxSagittaPx ? 2 * std::acos(1 - kMaxSagittaPx / radius) : 3.14159;
+      longest > kMaxSagittaPx ? 2 * std::acos(1 - kMaxSagittaPx / longest) : 3.14159;
   const int n = std::clamp(static_cast<int>(std::ceil(std::abs(span) / step)), 1, 32);
   const double c = std::cos(span / n), s = std::sin(span / n);
   Eigen::Vector2d direction = start;
   for (int i = 0; i <= n; ++i) {
-    const Eigen::Vector2d p = centre + radius * direction;
+    const Eigen::Vector2d p = capsule.Image(centre + radius * direction);
     points->emplace_back(static_cast<int>(std::lround(p.x() * kOne)), static_cast<int>(std::lround(p.y() * kOne)));
     direction = Eigen::Vector2d(c * direction.x() - s * direction.y(), s * direction.x() + c * direction.y());
   }
@@ -77,6 +80,11 @@ bool CapsuleProjector::Project(const Capsule& capsule, ImageCapsule* image) cons
   if (!in_range(image->a) || !in_range(image->b)) return false;
   image->ra = std::min(limit_x, focal_px_ * capsule.radius_from_mm / a.z());
   image->rb = std::min(limit_x, focal_px_ * capsule.radius_to_mm / b.z());
+  // 1 / cos(theta) of the capsule's middle, along the line from the principal point.
+  const Eigen::Vector2d middle = 0.5 * (na + nb);
+  const double off_axis = middle.norm();
+  image->stretch = std::sqrt(1 + off_axis * off_axis);
+  image->axis = off_axis > 1e-12 ? Eigen::Vector2d(middle / off_axis) : Eigen::Vector2d(1, 0);
   return image->ra >= 0 && image->rb >= 0;
 }
 
@@ -97,8 +105,9 @@ cv::Rect SilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, cv::Mat*
   ImageCapsule image;
   for (const Capsule& capsule : capsules) {
     if (!projector_.Project(capsule, &image)) continue;
-    const Eigen::Vector2d& ca = image.a;
-    const Eigen::Vector2d& cb = image.b;
+    // The hull of two circles in the capsule's round frame, mapped to the image.
+    const Eigen::Vector2d ca = image.Round(image.a);
+    const Eigen::Vector2d cb = image.Round(image.b);
     // OpenCV's fill also sets the pixels its outline passes through, about half a pixel
     // outside the polygon: shrink by that so the area matches the shape's.
     const double ra = std::max(0.0, image.ra - kOutlinePx);
@@ -108,7 +117,7 @@ cv::Rect SilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, cv::Mat*
     const double length = d.norm();
     if (length <= std::abs(ra - rb) + 1e-9) {
       // One end's circle holds the other: the hull is that circle.
-      AppendArc(ra >= rb ? ca : cb, std::max(ra, rb), Eigen::Vector2d(1, 0), -2 * std::numbers::pi, &polygon);
+      AppendArc(image, ra >= rb ? ca : cb, std::max(ra, rb), Eigen::Vector2d(1, 0), -2 * std::numbers::pi, &polygon);
       polygon.pop_back();
     } else {
       // Outer tangents touch the circles in directions +-n cos(phi) + u sin(phi) (u along
@@ -117,8 +126,8 @@ cv::Rect SilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, cv::Mat*
       const Eigen::Vector2d u = d / length, n(-u.y(), u.x());
       const double sin_phi = (ra - rb) / length, cos_phi = std::sqrt(1 - sin_phi * sin_phi);
       const double half = std::numbers::pi / 2 - std::asin(sin_phi);
-      AppendArc(cb, rb, n * cos_phi + u * sin_phi, -2 * half, &polygon);
-      AppendArc(ca, ra, -n * cos_phi + u * sin_phi, -(2 * std::numbers::pi - 2 * half), &polygon);
+      AppendArc(image, cb, rb, n * cos_phi + u * sin_phi, -2 * half, &polygon);
+      AppendArc(image, ca, ra, -n * cos_phi + u * sin_phi, -(2 * std::numbers::pi - 2 * half), &polygon);
     }
     cv::fillConvexPoly(*mask, polygon, cv::Scalar(255), cv::LINE_8, kShift);
     if (outline) {
@@ -132,11 +141,11 @@ cv::Rect SilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, cv::Mat*
         for (int k = 0; k < steps; ++k) outline->push_back(from + (to - from) * (static_cast<float>(k) / steps));
       }
     }
-    const double r = std::max(ra, rb) + kOutlinePx;
-    x0 = std::min({x0, ca.x() - r, cb.x() - r});
-    y0 = std::min({y0, ca.y() - r, cb.y() - r});
-    x1 = std::max({x1, ca.x() + r, cb.x() + r});
-    y1 = std::max({y1, ca.y() + r, cb.y() + r});
+    const double r = std::max(ra, rb) * image.stretch + kOutlinePx;
+    x0 = std::min({x0, image.a.x() - r, image.b.x() - r});
+    y0 = std::min({y0, image.a.y() - r, image.b.y() - r});
+    x1 = std::max({x1, image.a.x() + r, image.b.x() + r});
+    y1 = std::max({y1, image.a.y() + r, image.b.y() + r});
   }
   if (x1 < x0) return {};
   const cv::Rect drawn(cv::Point(static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0))),

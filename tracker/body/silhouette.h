@@ -1,9 +1,15 @@
 // Fast silhouette rendering for the particle filter: the body's binary mask as a camera
-// sees it. Each capsule is drawn as the convex hull of its two end spheres' images, each
-// sphere imaged as a circle of radius f r / z around its projected centre (through the lens
-// distortion), filled with OpenCV's sub-pixel convex-polygon fill. That approximates the
-// exact image (an ellipse per sphere, distortion across the radius): the ray caster
-// (tracker/body/ray_caster.h) is exact and the tests bound the difference.
+// sees it. Each capsule is drawn as the convex hull of its two end spheres' images, filled
+// with OpenCV's sub-pixel convex-polygon fill. A sphere seen theta off the optical axis
+// images as an ellipse whose minor semi-axis is f r / z and whose major one, along the
+// line from the principal point, is 1 / cos(theta) times longer (to first order in r / z:
+// 15% at 30 degrees, 41% at 45, which a wide webcam sees). Both ends of a capsule are
+// stretched by the factor and along the direction of the capsule's middle, so the hull of
+// the two ellipses is the affine image of the hull of two circles, drawn as such. Left out:
+// the two ends' slightly different stretches, the ellipse centre's second-order shift
+// outwards (f tan(theta) (r / z)^2, under 2 px for a 0.1 m part 2 m away at 40 degrees),
+// and distortion across the radius. The ray caster (tracker/body/ray_caster.h) is exact and
+// the tests bound the difference.
 //
 // Particles wander: a part may be far off the image or outside the region where the lens
 // model is valid. OpenCV's distortion polynomial bends back beyond its monotone range
@@ -24,10 +30,24 @@
 namespace jgpm {
 
 // A capsule as a camera sees it: its end spheres' image centres (pixels, through the lens)
-// and radii f r / z (pixels).
+// and minor semi-axes f r / z (pixels); both ellipses are `stretch` times longer along the
+// unit image direction `axis`. Round() maps the image to the frame where they are circles
+// of radii ra and rb (squeezed along `axis` about the capsule's middle); Image() maps back.
 struct ImageCapsule {
   Eigen::Vector2d a, b;
   double ra = 0, rb = 0;
+  Eigen::Vector2d axis = Eigen::Vector2d(1, 0);
+  double stretch = 1;
+
+  Eigen::Vector2d Middle() const { return 0.5 * (a + b); }
+  Eigen::Vector2d Round(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2d d = p - Middle();
+    return p + (1 / stretch - 1) * axis.dot(d) * axis;
+  }
+  Eigen::Vector2d Image(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2d d = p - Middle();
+    return p + (stretch - 1) * axis.dot(d) * axis;
+  }
 };
 
 // Projects capsules with the culling described above; shared by the renderers.

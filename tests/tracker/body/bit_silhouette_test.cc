@@ -1,5 +1,6 @@
 // The packed-bit renderer against a brute-force oracle: a pixel is set exactly when its
-// centre lies in the convex hull of the capsule's two projected end discs, i.e. when
+// centre lies in the convex hull of the capsule's two projected end ellipses, i.e. when,
+// in the capsule's round frame (ImageCapsule::Round, where the ellipses are discs),
 // min over t in [0, 1] of |p - (a + t (b - a))| - (ra + t (rb - ra)) <= 0 (a convex
 // function of t, minimised by golden-section search). Pixels within 1e-6 px of the
 // boundary may go either way.
@@ -15,8 +16,8 @@ namespace jgpm {
 namespace {
 
 double HullDistance(const ImageCapsule& c, double u, double v) {
-  const Eigen::Vector2d p(u, v);
-  auto f = [&](double t) { return (p - (c.a + t * (c.b - c.a))).norm() - (c.ra + t * (c.rb - c.ra)); };
+  const Eigen::Vector2d p = c.Round(Eigen::Vector2d(u, v)), a = c.Round(c.a), b = c.Round(c.b);
+  auto f = [&](double t) { return (p - (a + t * (b - a))).norm() - (c.ra + t * (c.rb - c.ra)); };
   double lo = 0, hi = 1;
   const double g = (std::sqrt(5.0) - 1) / 2;
   for (int i = 0; i < 60; ++i) {
@@ -38,7 +39,7 @@ TEST(BitSilhouette, EveryPixelAgreesWithTheHullOracle) {
   const BitSilhouetteRenderer renderer(camera);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> x(-1500, 1500), y(-200, 2200), z(-1500, 1500), r(5, 250);
-  int drawn = 0, compared_in = 0;
+  int drawn = 0, compared_in = 0, stretched = 0;
   for (int trial = 0; trial < 300; ++trial) {
     Capsule capsule{{x(rng), y(rng), z(rng)}, {x(rng), y(rng), z(rng)}, r(rng), r(rng)};
     if (trial % 10 == 0) capsule.to_mm = capsule.from_mm + Eigen::Vector3d(0, 0.5, 0);  // one disc in the other
@@ -46,15 +47,17 @@ TEST(BitSilhouette, EveryPixelAgreesWithTheHullOracle) {
     ImageCapsule image;
     if (!projector.Project(capsule, &image)) continue;
     ++drawn;
+    stretched += image.stretch > 1.03;
+    const double reach_a = image.ra * image.stretch, reach_b = image.rb * image.stretch;
     BitMask mask(camera.width, camera.height);
     renderer.Draw({capsule}, &mask);
     const cv::Mat drawn_mat = mask.ToMat();
     // Outside the hull's bounding box (plus a pixel) nothing may be set; inside it, each
     // pixel is compared with the oracle.
-    const int u0 = std::max(0, static_cast<int>(std::floor(std::min(image.a.x() - image.ra, image.b.x() - image.rb))) - 1);
-    const int u1 = std::min(camera.width - 1, static_cast<int>(std::ceil(std::max(image.a.x() + image.ra, image.b.x() + image.rb))) + 1);
-    const int w0 = std::max(0, static_cast<int>(std::floor(std::min(image.a.y() - image.ra, image.b.y() - image.rb))) - 1);
-    const int w1 = std::min(camera.height - 1, static_cast<int>(std::ceil(std::max(image.a.y() + image.ra, image.b.y() + image.rb))) + 1);
+    const int u0 = std::max(0, static_cast<int>(std::floor(std::min(image.a.x() - reach_a, image.b.x() - reach_b))) - 1);
+    const int u1 = std::min(camera.width - 1, static_cast<int>(std::ceil(std::max(image.a.x() + reach_a, image.b.x() + reach_b))) + 1);
+    const int w0 = std::max(0, static_cast<int>(std::floor(std::min(image.a.y() - reach_a, image.b.y() - reach_b))) - 1);
+    const int w1 = std::min(camera.height - 1, static_cast<int>(std::ceil(std::max(image.a.y() + reach_a, image.b.y() + reach_b))) + 1);
     int rows_min = camera.height, rows_max = -1, set_in_box = 0;
     for (int v = w0; v <= w1; ++v) {
       for (int u = u0; u <= u1; ++u) {
@@ -78,6 +81,7 @@ TEST(BitSilhouette, EveryPixelAgreesWithTheHullOracle) {
   }
   EXPECT_GT(drawn, 100);
   EXPECT_GT(compared_in, 10000);
+  EXPECT_GT(stretched, 30);  // ellipses, not only circles near the axis
 }
 
 TEST(BitSilhouette, SpansAreClippedToTheImage) {
