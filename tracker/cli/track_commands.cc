@@ -187,9 +187,11 @@ void RunBench(BenchArguments a) {
       RunTrackBench(clips, clip_folder, a.bench, [&line](const TrackBenchRow& r, int done, int total) {
         line.Finish();
         std::printf("%-20s %-13s %-15s 14 joints %5.1f mm | 17 joints root-relative %5.1f, search alone %5.1f, "
-                    "floor %5.1f | %4.1f%% failed, %4.1f%% swapped | %5.1f frames/s (%5.1f with input)\n",
+                    "floor %5.1f | %4.1f%% failed, %4.1f%% swapped, %4.1f%% lost in view (longest %d) | %5.1f frames/s "
+                    "(%5.1f with input)\n",
                     r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.bt14_mm, r.g17_root_mm, r.search_g17_root_mm,
-                    r.floor_g17_root_mm, 100 * r.failure_rate, 100 * r.swap_rate, r.fps, r.fps_with_input);
+                    r.floor_g17_root_mm, 100 * r.failure_rate, 100 * r.swap_rate, 100 * r.lost_in_view_rate,
+                    r.longest_lost_in_view, r.fps, r.fps_with_input);
         std::fflush(stdout);
         line.Update(done, total, "runs");
       });

@@ -38,6 +38,8 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
   for (size_t k = 0; k < e.gait17.per_frame_mm.size() && k < row->per_frame_mm.size(); ++k)
     row->per_frame_mm[k] += e.gait17.per_frame_mm[k];  // NaN stays NaN
   std::vector<Eigen::Matrix3Xd> search, target;
+  std::vector<TrackStatus> status;
+  std::vector<bool> in_view;
   int lost = 0;
   long evaluations = 0;
   for (const TrackedFrame& f : r.run.frames) {
@@ -45,12 +47,17 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
     target.push_back(truth.frames[f.index].joints_mm);
     lost += f.status == TrackStatus::kLost;
     evaluations += f.evaluations;
+    status.push_back(f.status);
+    in_view.push_back(PersonInView(truth, f.index));
   }
+  const LostInView lost_in_view = CountLostInView(status, in_view);
   const std::vector<std::string> names = model.skeleton().BoneNames();
   row->search_bt14_mm += CompareTracks(search, names, target, truth.joint_names, Bodytrack14()).absolute_mm;
   row->search_g17_root_mm += CompareTracks(search, names, target, truth.joint_names, Gait17()).root_relative_mm;
   const int n = static_cast<int>(r.run.frames.size());
   row->lost_rate += n ? static_cast<double>(lost) / n : 0;
+  row->lost_in_view_rate += n ? static_cast<double>(lost_in_view.frames) / n : 0;
+  row->longest_lost_in_view = std::max(row->longest_lost_in_view, lost_in_view.longest);
   row->fps += r.run.tracking_seconds > 0 ? n / r.run.tracking_seconds : 0;
   row->fps_with_input += r.loop_seconds > 0 ? n / r.loop_seconds : 0;
   row->evaluations_per_frame += n ? static_cast<double>(evaluations) / n : 0;
@@ -62,7 +69,7 @@ void Average(TrackBenchRow* row) {
   const double k = std::max(1, row->seeds);
   for (double* x : {&row->bt14_mm, &row->bt14_root_mm, &row->bt14_procrustes_mm, &row->g17_mm, &row->g17_root_mm,
                     &row->g17_procrustes_mm, &row->search_bt14_mm, &row->search_g17_root_mm, &row->failure_rate,
-                    &row->swap_rate, &row->lost_rate, &row->fps, &row->fps_with_input, &row->evaluations_per_frame}) {
+                    &row->swap_rate, &row->lost_rate, &row->lost_in_view_rate, &row->fps, &row->fps_with_input, &row->evaluations_per_frame}) {
     *x /= k;
   }
   for (double& x : row->per_joint_mm) x /= k;
@@ -82,6 +89,34 @@ void Text(cv::Mat& image, const std::string& text, cv::Point at, double scale = 
 }
 
 }  // namespace
+
+bool PersonInView(const ClipGroundTruth& truth, int frame) {
+  const std::vector<Camera>& cameras = truth.render_cameras.empty() ? truth.cameras : truth.render_cameras;
+  const Eigen::Matrix3Xd& joints = truth.frames.at(frame).joints_mm;
+  for (const Camera& camera : cameras) {
+    int inside = 0;
+    for (int j = 0; j < joints.cols(); ++j) {
+      Eigen::Vector2d p;
+      inside += camera.Project(joints.col(j), &p) && p.x() >= 0 && p.y() >= 0 && p.x() < camera.width &&
+                p.y() < camera.height;
+    }
+    if (2 * inside >= joints.cols() && joints.cols() > 0) return true;
+  }
+  return false;
+}
+
+LostInView CountLostInView(const std::vector<TrackStatus>& status, const std::vector<bool>& in_view) {
+  JGPM_CHECK(status.size() == in_view.size());
+  LostInView counted;
+  int run = 0;
+  for (size_t k = 0; k < status.size(); ++k) {
+    const bool lost = status[k] == TrackStatus::kLost && in_view[k];
+    run = lost ? run + 1 : 0;
+    counted.frames += lost;
+    counted.longest = std::max(counted.longest, run);
+  }
+  return counted;
+}
 
 PriorFloors ModelFloors(const GaitModel& model, const ClipGroundTruth& truth, int frames) {
   std::error_code ec;
@@ -197,15 +232,16 @@ std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows) {
   std::string csv =
       "clip,model,method,cameras,frames,seeds,bt14_mm,bt14_root_mm,bt14_procrustes_mm,g17_mm,g17_root_mm,"
       "g17_procrustes_mm,search_bt14_mm,search_g17_root_mm,floor_bt14_root_mm,floor_g17_root_mm,failure_rate,"
-      "swap_rate,lost_rate,fps,fps_with_input,evaluations_per_frame\n";
+      "swap_rate,lost_rate,fps,fps_with_input,evaluations_per_frame,lost_in_view_rate,longest_lost_in_view\n";
   char line[640];
   for (const TrackBenchRow& r : rows) {
     std::snprintf(line, sizeof(line),
-                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f\n",
+                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f,%.4f,%d\n",
                   r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.cameras, r.frames, r.seeds, r.bt14_mm,
                   r.bt14_root_mm, r.bt14_procrustes_mm, r.g17_mm, r.g17_root_mm, r.g17_procrustes_mm,
                   r.search_bt14_mm, r.search_g17_root_mm, r.floor_bt14_root_mm, r.floor_g17_root_mm, r.failure_rate,
-                  r.swap_rate, r.lost_rate, r.fps, r.fps_with_input, r.evaluations_per_frame);
+                  r.swap_rate, r.lost_rate, r.fps, r.fps_with_input, r.evaluations_per_frame, r.lost_in_view_rate,
+                  r.longest_lost_in_view);
     csv += line;
   }
   return csv;

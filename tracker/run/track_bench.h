@@ -43,6 +43,11 @@ struct TrackBenchRow {
   double g17_mm = 0, g17_root_mm = 0, g17_procrustes_mm = 0;
   double search_bt14_mm = 0, search_g17_root_mm = 0;              // before refinement
   double failure_rate = 0, swap_rate = 0, lost_rate = 0;
+  // Lost while the person was in view (PersonInView): the share of frames (mean over the
+  // seeds) and the longest run (frames, the worst seed). A restart loop shows here; a
+  // walker who left every view does not.
+  double lost_in_view_rate = 0;
+  int longest_lost_in_view = 0;
   double fps = 0, evaluations_per_frame = 0;
   double fps_with_input = 0;  // with reading the frames (and background subtraction)
   double floor_bt14_root_mm = -1, floor_g17_root_mm = -1;         // -1: not applicable
@@ -64,6 +69,15 @@ struct PriorFloors {
   double model_bt14 = -1, model_g17 = -1;
 };
 PriorFloors ModelFloors(const GaitModel& model, const ClipGroundTruth& truth, int frames);
+
+// Whether the clip's person is in view at `frame`: half of the true joints or more inside
+// the image of some camera that rendered the clip (render_cameras when the clip has them).
+bool PersonInView(const ClipGroundTruth& truth, int frame);
+// Frames with status lost while in view, and the longest such run (`in_view` per frame).
+struct LostInView {
+  int frames = 0, longest = 0;
+};
+LostInView CountLostInView(const std::vector<TrackStatus>& status, const std::vector<bool>& in_view);
 
 // Tracks every clip in `folder` (rendered: tracker/clip/tracking_suite.h). `progress` (may be
 // empty) gets each finished row with the number done and the total.

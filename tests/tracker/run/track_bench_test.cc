@@ -36,6 +36,39 @@ TEST(TrackBench, TablesHoldEveryRowJointAndFrame) {
             "clip,model,method,frame,mm\nc1,m,prior,0,1.00\nc1,m,prior,1,nan\nc1,m,prior,2,3.25\n");
 }
 
+TEST(TrackBench, LostCountsOnlyWhileInViewWithTheLongestRun) {
+  using S = TrackStatus;
+  const std::vector<S> status{S::kLost, S::kLost, S::kTracked, S::kLost, S::kLost, S::kLost, S::kPredicted, S::kLost};
+  const std::vector<bool> in_view{false, true, true, true, true, false, true, true};
+  const LostInView counted = CountLostInView(status, in_view);
+  EXPECT_EQ(counted.frames, 4);   // frames 1, 3, 4 and 7
+  EXPECT_EQ(counted.longest, 2);  // 3-4 (frame 5 is out of view)
+  EXPECT_EQ(CountLostInView({}, {}).frames, 0);
+}
+
+TEST(TrackBench, PersonInViewWhenHalfTheJointsAreInAnImage) {
+  ClipGroundTruth truth;
+  truth.cameras.push_back(LookAtCamera("c", 320, 240, 280, {0, 1000, -5000}, {0, 1000, 0}));
+  ClipFrame frame;
+  frame.joints_mm.resize(3, 4);
+  frame.joints_mm << 0, 0, 0, 0, 1000, 1500, 500, 100, 0, 0, 0, 0;  // a column of joints at the target
+  truth.frames.push_back(frame);
+  frame.joints_mm.row(0).setConstant(20000);  // far to the side
+  truth.frames.push_back(frame);
+  frame.joints_mm.row(0) << 0, 0, 20000, 20000;  // half in
+  truth.frames.push_back(frame);
+  frame.joints_mm.row(0) << 0, 20000, 20000, 20000;  // a quarter
+  truth.frames.push_back(frame);
+  EXPECT_TRUE(PersonInView(truth, 0));
+  EXPECT_FALSE(PersonInView(truth, 1));
+  EXPECT_TRUE(PersonInView(truth, 2));
+  EXPECT_FALSE(PersonInView(truth, 3));
+  // The cameras that rendered the images decide, when the clip has them.
+  truth.render_cameras.push_back(LookAtCamera("r", 320, 240, 280, {20000, 1000, -5000}, {20000, 1000, 0}));
+  EXPECT_FALSE(PersonInView(truth, 0));
+  EXPECT_TRUE(PersonInView(truth, 1));
+}
+
 ClipGroundTruth Trial(const std::string& subject, const std::string& trial, int frames) {
   ClipGroundTruth truth;
   truth.source_asf = (test::CmuRoot() / "subjects" / subject / (subject + ".asf")).string();
