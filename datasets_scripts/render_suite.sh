@@ -4,13 +4,13 @@
 # build/tracking_suite), one folder per clip; clips already there are kept.
 # Data root: $JGPM_DATA, else ./data/cmu, else ../shared/data/cmu. Extra arguments go to
 # every `jgpm render` (e.g. --max-frames 10 for a quick look). ONLY=NAME renders that clip
-# alone.
+# alone; JGPM=PATH renders with that jgpm (default build/tracker/cli/jgpm, built if missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-build/tracking_suite}"
 shift || true
-jgpm=build/tracker/cli/jgpm
-[ -x "$jgpm" ] || datasets_scripts/build.sh --target jgpm
+jgpm="${JGPM:-build/tracker/cli/jgpm}"
+[ -x "$jgpm" ] || [ -n "${JGPM:-}" ] || datasets_scripts/build.sh --target jgpm
 root="${JGPM_DATA:-}"
 if [ -z "$root" ]; then
   for candidate in data/cmu ../shared/data/cmu; do
