@@ -131,14 +131,15 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
       q[2] = c.Image(rb_centre + c.rb * tb);
       q[3] = c.Image(ra_centre + c.ra * tb);
     }
-    // Each end's ellipse: p in it when (p - centre)' M (p - centre) <= 1, M = (I + (1 /
-    // stretch^2 - 1) axis axis') / r^2; its half height is r |row y of (I + (stretch - 1)
-    // axis axis')|.
-    const double squeeze = 1 / (c.stretch * c.stretch) - 1;
-    const double m00 = 1 + squeeze * c.axis.x() * c.axis.x(), m01 = squeeze * c.axis.x() * c.axis.y(),
-                 m11 = 1 + squeeze * c.axis.y() * c.axis.y();
-    const double half_height = std::hypot((c.stretch - 1) * c.axis.x() * c.axis.y(),
-                                          1 + (c.stretch - 1) * c.axis.y() * c.axis.y());
+    // Each end's ellipse: p in it when (p - centre)' M (p - centre) <= r^2, M = I - lean
+    // lean' / k^2 (Round's map squared, as k^2 = 1 + |lean|^2, and 1 / k = shrink (k + 1));
+    // it spans at most r k above and below its centre. (Few divisions and roots: this
+    // runs for every part of every particle and camera.)
+    const double inverse_k = c.shrink * (c.stretch + 1), inverse_k2 = inverse_k * inverse_k;
+    const double m00 = 1 - inverse_k2 * c.lean.x() * c.lean.x(), m01 = -inverse_k2 * c.lean.x() * c.lean.y(),
+                 m11 = 1 - inverse_k2 * c.lean.y() * c.lean.y();
+    const double half_height = c.stretch;
+    const double inverse_m00 = 1 / m00;
     // Rows v0..v1 (clamped to the image; coordinates are bounded by the projector's culling,
     // so the int conversions are defined). Each non-horizontal quad edge as x = x0 + (v -
     // y0) * slope over [y0, y1], set up once per capsule (a horizontal edge's ends are
@@ -164,20 +165,24 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
     const double ra2 = c.ra * c.ra, rb2 = c.rb * c.rb;
     const int last_column = mask->width() - 1;
     int drawn_first = mask->height(), drawn_last = -1;
-    // Row v's span of the ellipse at `centre` with r^2 = `r2`: m00 x^2 + 2 m01 x dy +
-    // m11 dy^2 <= r2 in x (relative to the centre).
-    const auto end_span = [&](const Eigen::Vector2d& centre, double r2, double v, double* left, double* right) {
-      const double dy = v - centre.y();
-      const double b = m01 * dy, disc = b * b - m00 * (m11 * dy * dy - r2);
-      if (disc < 0) return;
-      const double h = std::sqrt(disc);
-      *left = std::min(*left, centre.x() + (-b - h) / m00);
-      *right = std::max(*right, centre.x() + (-b + h) / m00);
-    };
+    // Row v's span of each end's ellipse: m00 x^2 + 2 m01 x dy + m11 dy^2 <= r^2 in x
+    // (relative to its centre, dy = v - its row), i.e. x = -slope dy +- sqrt(curve dy^2 +
+    // r^2 / m00): as short a chain of dependent operations per row as a circle's.
+    const double slope = m01 * inverse_m00, curve = slope * slope - m11 * inverse_m00;
+    const double ax = c.a.x(), ay = c.a.y(), bx = c.b.x(), by = c.b.y();
+    const double ca = ra2 * inverse_m00, cb = rb2 * inverse_m00;
     for (int v = v0; v <= v1; ++v) {
       double left = 1e300, right = -1e300;
-      end_span(c.a, ra2, v, &left, &right);
-      end_span(c.b, rb2, v, &left, &right);
+      const double da = v - ay, ha2 = curve * da * da + ca;
+      if (ha2 >= 0) {
+        const double h = std::sqrt(ha2), x = ax - slope * da;
+        left = x - h, right = x + h;
+      }
+      const double db = v - by, hb2 = curve * db * db + cb;
+      if (hb2 >= 0) {
+        const double h = std::sqrt(hb2), x = bx - slope * db;
+        left = std::min(left, x - h), right = std::max(right, x + h);
+      }
       for (int e = 0; e < num_edges; ++e) {
         const Edge& edge = edges[e];
         if (v < edge.y0 || v > edge.y1) continue;
@@ -197,15 +202,22 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
         const Eigen::Vector2d delta = (to - from) / steps;
         for (int k = 0; k < steps; ++k) outline->push_back((from + k * delta).cast<float>());
       };
-      // Points on the arc of (centre, radius) from unit direction `start`, turning by `span`
-      // radians: rotations of one another, so one sine and cosine per arc.
-      auto arc = [&](const Eigen::Vector2d& centre, double radius, Eigen::Vector2d start, double span) {
+      // Points on the arc of (centre, radius) of the round frame from unit direction
+      // `start`, turning by `span` radians, in the image: each offset from the ellipse's
+      // centre is the last one turned by the step's rotation seen through Image's map
+      // (S R S^-1), so one sine and cosine per arc.
+      const Eigen::Matrix2d stretch_map = Eigen::Matrix2d::Identity() + c.grow * c.lean * c.lean.transpose();
+      const Eigen::Matrix2d squeeze_map = Eigen::Matrix2d::Identity() - c.shrink * c.lean * c.lean.transpose();
+      auto arc = [&](const Eigen::Vector2d& centre, double radius, const Eigen::Vector2d& start, double span) {
         const int steps =
             std::max(2, static_cast<int>(std::ceil(std::abs(span) * radius * c.stretch / outline_step_px)));
         const double cs = std::cos(span / steps), sn = std::sin(span / steps);
+        const Eigen::Matrix2d turn = stretch_map * (Eigen::Matrix2d() << cs, -sn, sn, cs).finished() * squeeze_map;
+        const Eigen::Vector2d base = c.Image(centre);
+        Eigen::Vector2d offset = stretch_map * (radius * start);
         for (int k = 0; k <= steps; ++k) {
-          outline->push_back(c.Image(centre + radius * start).cast<float>());
-          start = Eigen::Vector2d(cs * start.x() - sn * start.y(), sn * start.x() + cs * start.y());
+          outline->push_back((base + offset).cast<float>());
+          offset = turn * offset;
         }
       };
       if (quad) {

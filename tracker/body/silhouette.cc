@@ -81,10 +81,11 @@ bool CapsuleProjector::Project(const Capsule& capsule, ImageCapsule* image) cons
   image->ra = std::min(limit_x, focal_px_ * capsule.radius_from_mm / a.z());
   image->rb = std::min(limit_x, focal_px_ * capsule.radius_to_mm / b.z());
   // 1 / cos(theta) of the capsule's middle, along the line from the principal point.
-  const Eigen::Vector2d middle = 0.5 * (na + nb);
-  const double off_axis = middle.norm();
-  image->stretch = std::sqrt(1 + off_axis * off_axis);
-  image->axis = off_axis > 1e-12 ? Eigen::Vector2d(middle / off_axis) : Eigen::Vector2d(1, 0);
+  image->lean = 0.5 * (na + nb);
+  image->stretch = std::sqrt(1 + image->lean.squaredNorm());
+  image->grow = 1 / (image->stretch + 1);
+  image->shrink = image->grow / image->stretch;
+  image->middle = 0.5 * (image->a + image->b);
   return image->ra >= 0 && image->rb >= 0;
 }
 

@@ -30,24 +30,23 @@
 namespace jgpm {
 
 // A capsule as a camera sees it: its end spheres' image centres (pixels, through the lens)
-// and minor semi-axes f r / z (pixels); both ellipses are `stretch` times longer along the
-// unit image direction `axis`. Round() maps the image to the frame where they are circles
-// of radii ra and rb (squeezed along `axis` about the capsule's middle); Image() maps back.
+// and minor semi-axes f r / z (pixels); both ellipses are `stretch` = sqrt(1 + |lean|^2)
+// times longer along `lean`, the capsule's middle in normalised coordinates (x/z, y/z).
+// Round() maps the image to the frame where they are circles of radii ra and rb (squeezed
+// along `lean` about the capsule's middle): p - (lean . (p - middle)) lean / (k (k + 1)),
+// k the stretch; Image() maps back: p + (lean . (p - middle)) lean / (k + 1). (The image
+// of lean lean' / |lean|^2 scaled by k - 1 = |lean|^2 / (k + 1), with no division by a
+// small |lean|.)
 struct ImageCapsule {
   Eigen::Vector2d a, b;
   double ra = 0, rb = 0;
-  Eigen::Vector2d axis = Eigen::Vector2d(1, 0);
   double stretch = 1;
+  Eigen::Vector2d lean = Eigen::Vector2d::Zero();
+  Eigen::Vector2d middle = Eigen::Vector2d::Zero();  // (a + b) / 2
+  double grow = 0.5, shrink = 0.5;                  // 1 / (k + 1) and 1 / (k (k + 1))
 
-  Eigen::Vector2d Middle() const { return 0.5 * (a + b); }
-  Eigen::Vector2d Round(const Eigen::Vector2d& p) const {
-    const Eigen::Vector2d d = p - Middle();
-    return p + (1 / stretch - 1) * axis.dot(d) * axis;
-  }
-  Eigen::Vector2d Image(const Eigen::Vector2d& p) const {
-    const Eigen::Vector2d d = p - Middle();
-    return p + (stretch - 1) * axis.dot(d) * axis;
-  }
+  Eigen::Vector2d Round(const Eigen::Vector2d& p) const { return p - (shrink * lean.dot(p - middle)) * lean; }
+  Eigen::Vector2d Image(const Eigen::Vector2d& p) const { return p + (grow * lean.dot(p - middle)) * lean; }
 };
 
 // Projects capsules with the culling described above; shared by the renderers.
