@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "io/base/enum_name.h"
 #include "io/base/error.h"
@@ -278,8 +279,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     return s.found &&
            (s.floor_mm - predicted_floor_mm).norm() <= 500 + 500 * (frame.time_s - last_good_time_s_);
   };
+  // Where the masks alone put the person: looked for once a frame, when first needed.
+  std::optional<PersonSighting> sighting;
+  const auto located = [&]() -> const PersonSighting& {
+    if (!sighting) sighting = LocatePerson(cameras_, frame.masks);
+    return *sighting;
+  };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
-    const PersonSighting seen = LocatePerson(cameras_, frame.masks);
+    const PersonSighting& seen = located();
     const double away = (seen.floor_mm - predicted_floor_mm).norm();
     const double reach = options_.relocate_distance_mm + 2000 * options_.relocate_every * std::max(dt, 1.0 / 60);
     if (seen.found && seen.feet_seen && away > options_.relocate_distance_mm && away <= reach) {
@@ -289,7 +296,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   if (hidden_ && !frame.dropped) {
     // Hidden: predicted until the person is seen near where the dynamics put them (then
     // tracked again), or for max_hidden_s at most (then a restart from whoever is seen).
-    const PersonSighting seen = LocatePerson(cameras_, frame.masks);
+    const PersonSighting& seen = located();
     const double since = frame.time_s - last_good_time_s_;
     if (near_prediction(seen)) {
       hidden_ = false;
@@ -375,7 +382,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // camera, not a segmentation's specks (LocatePerson).
   PersonSighting seen;
   if (out.MeanIou() < options_.lost_iou) {
-    seen = LocatePerson(cameras_, frame.masks);
+    seen = located();
     ++bad_frames_;
   } else {
     bad_frames_ = 0;

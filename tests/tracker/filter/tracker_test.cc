@@ -40,6 +40,8 @@ constexpr int kFrames = 25;
 struct Fixture {
   test::TempDir dir;
   fs::path model, clip;
+  std::unique_ptr<GaitModel> loaded;  // the model file, read back
+  ClipGroundTruth truth;              // the clip's
 };
 const Fixture& Shared() {
   static Fixture fixture;  // its folder is removed at exit
@@ -61,10 +63,21 @@ const Fixture& Shared() {
     clip.contact_sheet = false;
     f->clip = f->dir.path() / "clip";
     RenderClip(skeleton, motion, source, {}, clip, f->clip.string());
+    f->loaded = ReadModelFile(f->model);
+    f->truth = ReadGroundTruth(f->clip / "ground_truth.json");
     return true;
   }();
   (void)made;
   return fixture;
+}
+
+// A tracker on the shared model and the clip's cameras: `particles` per layer, `seed`.
+std::unique_ptr<Tracker> SharedTracker(int particles, uint64_t seed = 1) {
+  const Fixture& f = Shared();
+  TrackerOptions options;
+  options.annealing.particles = particles;
+  options.annealing.seed = seed;
+  return std::make_unique<Tracker>(*f.loaded, f.truth.cameras, options);
 }
 
 // A small budget: 2 cameras at 160x120, 150 particles x 4 layers.
@@ -136,7 +149,7 @@ constexpr double kAutoBoundMm = 130, kTruthStartBoundMm = 70, kRootBoundMm = 60;
 
 TEST(Tracker, TracksAWalkAndNotItsShuffledMasks) {
   const Fixture& f = Shared();
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  const ClipGroundTruth& truth = f.truth;
   const TrackJobResult result = RunTrackJob(Job(f.clip, 2));
   ASSERT_EQ(static_cast<int>(result.run.frames.size()), kFrames);
   ASSERT_TRUE(result.errors.has_value());
@@ -170,7 +183,7 @@ TEST(Tracker, TracksAWalkAndNotItsShuffledMasks) {
 // better on the suite) tracks the walk within the same bound, and does change the result.
 TEST(Tracker, TracksAWalkWithPostureAdaptation) {
   const Fixture& f = Shared();
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  const ClipGroundTruth& truth = f.truth;
   TrackJobOptions job = Job(f.clip, 2);
   job.tracker.refinement.adapt_posture = true;
   const TrackJobResult adapted = RunTrackJob(job);
@@ -234,19 +247,15 @@ Frame ClipFrameAt(const ClipGroundTruth& truth, const fs::path& clip, int k) {
 // numbers, so a tracker restarting in the same place made the same guesses again).
 TEST(Tracker, EachStartDrawsItsOwnParticles) {
   const Fixture& f = Shared();
-  const auto model = ReadModelFile(f.model);
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
-  TrackerOptions options;
-  options.annealing.particles = 50;
-  Tracker a(*model, truth.cameras, options), b(*model, truth.cameras, options);
-  const Frame frame = ClipFrameAt(truth, f.clip, 5);
+  const auto a = SharedTracker(50), b = SharedTracker(50);
+  const Frame frame = ClipFrameAt(f.truth, f.clip, 5);
   Frame later = frame;
   later.index = 9;
-  ASSERT_TRUE(a.StartFromFrames({frame}));
-  ASSERT_TRUE(b.StartFromFrames({frame}));
-  EXPECT_EQ(a.filter().particles(), b.filter().particles());  // same frame, same seed: same draws
-  ASSERT_TRUE(b.StartFromFrames({later}));
-  EXPECT_NE(a.filter().particles(), b.filter().particles());
+  ASSERT_TRUE(a->StartFromFrames({frame}));
+  ASSERT_TRUE(b->StartFromFrames({frame}));
+  EXPECT_EQ(a->filter().particles(), b->filter().particles());  // same frame, same seed: same draws
+  ASSERT_TRUE(b->StartFromFrames({later}));
+  EXPECT_NE(a->filter().particles(), b->filter().particles());
 }
 
 // The mean IoU counts the cameras that see someone where the person is expected or draw
@@ -271,20 +280,16 @@ TEST(TrackedFrame, MeanIouLeavesOutCamerasWithNoEvidence) {
 // after five frames of tracking specks (every mask was "someone" while any pixel was set).
 TEST(Tracker, SpecksAreNobody) {
   const Fixture& f = Shared();
-  const auto model = ReadModelFile(f.model);
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
-  TrackerOptions options;
-  options.annealing.particles = 60;
-  Tracker tracker(*model, truth.cameras, options);
-  ASSERT_TRUE(tracker.StartFromFrames({ClipFrameAt(truth, f.clip, 0)}));
-  for (int k = 0; k < 6; ++k) EXPECT_EQ(tracker.Step(ClipFrameAt(truth, f.clip, k)).status, TrackStatus::kTracked) << k;
-  Frame specks = ClipFrameAt(truth, f.clip, 6);
+  const auto tracker = SharedTracker(60);
+  ASSERT_TRUE(tracker->StartFromFrames({ClipFrameAt(f.truth, f.clip, 0)}));
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(tracker->Step(ClipFrameAt(f.truth, f.clip, k)).status, TrackStatus::kTracked) << k;
+  Frame specks = ClipFrameAt(f.truth, f.clip, 6);
   std::mt19937 rng(4);
   for (cv::Mat& mask : specks.masks) {
     mask.setTo(0);
     for (int s = 0; s < 12; ++s) mask.at<uint8_t>(rng() % mask.rows, rng() % mask.cols) = 255;
   }
-  EXPECT_EQ(tracker.Step(specks).status, TrackStatus::kLost);
+  EXPECT_EQ(tracker->Step(specks).status, TrackStatus::kLost);
 }
 
 // The walker hidden for half a second while a walker-sized blob shows up a metre and more
@@ -292,15 +297,11 @@ TEST(Tracker, SpecksAreNobody) {
 // again where they reappear.
 TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
   const Fixture& f = Shared();
-  const auto model = ReadModelFile(f.model);
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
-  TrackerOptions options;
-  options.annealing.particles = 100;
-  options.annealing.seed = 3;
-  Tracker tracker(*model, truth.cameras, options);
+  const ClipGroundTruth& truth = f.truth;
+  const auto tracker = SharedTracker(100, 3);
   std::vector<Frame> first;
   for (int k = 0; k < 5; ++k) first.push_back(ClipFrameAt(truth, f.clip, k));
-  ASSERT_TRUE(tracker.StartFromFrames(first));
+  ASSERT_TRUE(tracker->StartFromFrames(first));
   std::vector<TrackStatus> statuses;
   std::vector<double> root_error;
   for (int k = 0; k < kFrames; ++k) {
@@ -312,7 +313,7 @@ TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
         mask = moved;
       }
     }
-    const TrackedFrame out = tracker.Step(frame);
+    const TrackedFrame out = tracker->Step(frame);
     statuses.push_back(out.status);
     const Eigen::Vector3d d = out.state.size() ? Eigen::Vector3d(out.joints_mm.col(0) - truth.frames[k].joints_mm.col(0))
                                                : Eigen::Vector3d::Constant(1e9);
@@ -336,9 +337,8 @@ TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
 // of travel.
 TEST(Tracker, GuessReadsThePlaceHeadingAndSpeedOfTheWalk) {
   const Fixture& f = Shared();
-  const auto model = ReadModelFile(f.model);
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
-  const Tracker tracker(*model, truth.cameras, TrackerOptions{});
+  const ClipGroundTruth& truth = f.truth;
+  const Tracker tracker(*f.loaded, truth.cameras, TrackerOptions{});
   std::vector<Frame> frames;
   for (int k = 0; k < 15; ++k) frames.push_back(ClipFrameAt(truth, f.clip, k));
   InitialGuess guess;
@@ -360,8 +360,8 @@ TEST(Tracker, GuessReadsThePlaceHeadingAndSpeedOfTheWalk) {
 // The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).
 TEST(Tracker, TheSeedReachesTheRefinement) {
   const Fixture& f = Shared();
-  const auto model = ReadModelFile(f.model);
-  const ClipGroundTruth truth = ReadGroundTruth(f.clip / "ground_truth.json");
+  const GaitModel* model = f.loaded.get();
+  const ClipGroundTruth& truth = f.truth;
   const Frame frame = ClipFrameAt(truth, f.clip, 5);
   const SilhouetteLikelihood likelihood(truth.cameras);
   const BodyModel body(model->skeleton(), {}, "model");
