@@ -11,6 +11,7 @@ namespace {
 // each end (millimetres, average adult). Limbs run from their parent's end to their own.
 struct PartSpec {
   const char* name;
+  BodyRegion region;
   const char* from;
   const char* to;
   double radius_from_mm;
@@ -18,42 +19,44 @@ struct PartSpec {
   BodyMaterial material;
 };
 
+constexpr BodyRegion kTorso = BodyRegion::kTorso, kHead = BodyRegion::kHead, kArms = BodyRegion::kArms,
+                     kThighs = BodyRegion::kThighs, kShins = BodyRegion::kShins;
 constexpr BodyMaterial kSkin = BodyMaterial::kSkin, kShirt = BodyMaterial::kShirt,
                        kTrousers = BodyMaterial::kTrousers, kShoes = BodyMaterial::kShoes;
 
 // Radii chosen so the front and side silhouettes of the CMU subjects' rest poses have
 // roughly human widths: hips ~350 mm, chest ~330 x 230 mm, thigh ~160 mm at the top.
 const PartSpec kParts[] = {
-    {"pelvis", "lhipjoint", "rhipjoint", 85, 85, kTrousers},
-    {"lowerback", "root", "lowerback", 105, 110, kShirt},
-    {"upperback", "lowerback", "upperback", 110, 115, kShirt},
-    {"chest", "upperback", "thorax", 115, 100, kShirt},
-    {"shoulders", "lclavicle", "rclavicle", 55, 55, kShirt},
-    {"lclavicle", "thorax", "lclavicle", 70, 58, kShirt},
-    {"rclavicle", "thorax", "rclavicle", 70, 58, kShirt},
-    {"lowerneck", "thorax", "lowerneck", 50, 48, kSkin},
-    {"upperneck", "lowerneck", "upperneck", 48, 48, kSkin},
-    {"head", "upperneck", "head", 78, 88, kSkin},
-    {"lhumerus", "lclavicle", "lhumerus", 52, 42, kShirt},
-    {"rhumerus", "rclavicle", "rhumerus", 52, 42, kShirt},
-    {"lradius", "lhumerus", "lradius", 40, 33, kSkin},
-    {"rradius", "rhumerus", "rradius", 40, 33, kSkin},
-    {"lwrist", "lradius", "lwrist", 33, 28, kSkin},
-    {"rwrist", "rradius", "rwrist", 33, 28, kSkin},
-    {"lhand", "lwrist", "lhand", 36, 32, kSkin},
-    {"rhand", "rwrist", "rhand", 36, 32, kSkin},
-    {"lfingers", "lhand", "lfingers", 28, 22, kSkin},
-    {"rfingers", "rhand", "rfingers", 28, 22, kSkin},
-    {"lthumb", "lwrist", "lthumb", 18, 15, kSkin},
-    {"rthumb", "rwrist", "rthumb", 18, 15, kSkin},
-    {"lfemur", "lhipjoint", "lfemur", 80, 55, kTrousers},
-    {"rfemur", "rhipjoint", "rfemur", 80, 55, kTrousers},
-    {"ltibia", "lfemur", "ltibia", 52, 40, kTrousers},
-    {"rtibia", "rfemur", "rtibia", 52, 40, kTrousers},
-    {"lfoot", "ltibia", "lfoot", 42, 34, kShoes},
-    {"rfoot", "rtibia", "rfoot", 42, 34, kShoes},
-    {"ltoes", "lfoot", "ltoes", 32, 26, kShoes},
-    {"rtoes", "rfoot", "rtoes", 32, 26, kShoes},
+    {"pelvis", kTorso, "lhipjoint", "rhipjoint", 85, 85, kTrousers},
+    {"lowerback", kTorso, "root", "lowerback", 105, 110, kShirt},
+    {"upperback", kTorso, "lowerback", "upperback", 110, 115, kShirt},
+    {"chest", kTorso, "upperback", "thorax", 115, 100, kShirt},
+    {"shoulders", kTorso, "lclavicle", "rclavicle", 55, 55, kShirt},
+    {"lclavicle", kTorso, "thorax", "lclavicle", 70, 58, kShirt},
+    {"rclavicle", kTorso, "thorax", "rclavicle", 70, 58, kShirt},
+    {"lowerneck", kHead, "thorax", "lowerneck", 50, 48, kSkin},
+    {"upperneck", kHead, "lowerneck", "upperneck", 48, 48, kSkin},
+    {"head", kHead, "upperneck", "head", 78, 88, kSkin},
+    {"lhumerus", kArms, "lclavicle", "lhumerus", 52, 42, kShirt},
+    {"rhumerus", kArms, "rclavicle", "rhumerus", 52, 42, kShirt},
+    {"lradius", kArms, "lhumerus", "lradius", 40, 33, kSkin},
+    {"rradius", kArms, "rhumerus", "rradius", 40, 33, kSkin},
+    {"lwrist", kArms, "lradius", "lwrist", 33, 28, kSkin},
+    {"rwrist", kArms, "rradius", "rwrist", 33, 28, kSkin},
+    {"lhand", kArms, "lwrist", "lhand", 36, 32, kSkin},
+    {"rhand", kArms, "rwrist", "rhand", 36, 32, kSkin},
+    {"lfingers", kArms, "lhand", "lfingers", 28, 22, kSkin},
+    {"rfingers", kArms, "rhand", "rfingers", 28, 22, kSkin},
+    {"lthumb", kArms, "lwrist", "lthumb", 18, 15, kSkin},
+    {"rthumb", kArms, "rwrist", "rthumb", 18, 15, kSkin},
+    {"lfemur", kThighs, "lhipjoint", "lfemur", 80, 55, kTrousers},
+    {"rfemur", kThighs, "rhipjoint", "rfemur", 80, 55, kTrousers},
+    {"ltibia", kShins, "lfemur", "ltibia", 52, 40, kTrousers},
+    {"rtibia", kShins, "rfemur", "rtibia", 52, 40, kTrousers},
+    {"lfoot", kShins, "ltibia", "lfoot", 42, 34, kShoes},
+    {"rfoot", kShins, "rtibia", "rfoot", 42, 34, kShoes},
+    {"ltoes", kShins, "lfoot", "ltoes", 32, 26, kShoes},
+    {"rtoes", kShins, "rfoot", "rtoes", 32, 26, kShoes},
 };
 
 }  // namespace
@@ -81,12 +84,30 @@ BodyModel::BodyModel(const Skeleton& skeleton, const BodyModelOptions& options,
   for (const PartSpec& spec : kParts) {
     BodyPart part;
     part.name = spec.name;
+    part.region = spec.region;
     part.from_joint = joint(spec.from);
     part.to_joint = joint(spec.to);
-    part.radius_from_mm = spec.radius_from_mm * options.width_scale;
-    part.radius_to_mm = spec.radius_to_mm * options.width_scale;
+    part.base_from_mm = spec.radius_from_mm;
+    part.base_to_mm = spec.radius_to_mm;
     part.material = spec.material;
     parts_.push_back(part);
+  }
+  width_scale_ = options.width_scale;
+  SetRegionScales(kUnitRegionScales);
+}
+
+std::string_view BodyRegionName(BodyRegion region) {
+  static constexpr std::string_view kNames[] = {"torso", "head", "arms", "thighs", "shins"};
+  return kNames[static_cast<int>(region)];
+}
+
+void BodyModel::SetRegionScales(const RegionScales& scales) {
+  for (double s : scales) JGPM_CHECK(std::isfinite(s) && s > 0);
+  region_scales_ = scales;
+  for (BodyPart& part : parts_) {
+    const double scale = width_scale_ * scales[static_cast<int>(part.region)];
+    part.radius_from_mm = part.base_from_mm * scale;
+    part.radius_to_mm = part.base_to_mm * scale;
   }
 }
 
@@ -101,6 +122,17 @@ void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm,
     c.to_mm = joint_in_world_mm.col(part.to_joint);
     c.radius_from_mm = part.radius_from_mm;
     c.radius_to_mm = part.radius_to_mm;
+  }
+}
+
+void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm, double scale, const RegionScales& shape,
+                      std::vector<Capsule>* capsules) const {
+  Place(joint_in_world_mm, capsules);
+  for (size_t i = 0; i < parts_.size(); ++i) {
+    const int region = static_cast<int>(parts_[i].region);
+    const double s = width_scale_ * scale * shape[region];
+    (*capsules)[i].radius_from_mm = parts_[i].base_from_mm * s;
+    (*capsules)[i].radius_to_mm = parts_[i].base_to_mm * s;
   }
 }
 

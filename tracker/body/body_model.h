@@ -1,10 +1,14 @@
 // The volumetric body the tracker draws: one tapered capsule per limb segment (the convex
 // hull of two spheres, radii interpolated linearly between its ends), a torso of spine,
 // pelvis and shoulder capsules, and a head. Segment ends are joints of the ASF skeleton,
-// so lengths follow the subject's bones; widths are adult defaults times a scale.
+// so lengths follow the subject's bones; widths are adult defaults times a scale, and
+// times a scale per region of the body (a build: broad shoulders and thin legs; clothes:
+// a coat's wider torso and thighs), which the tracker learns (tracker/filter/body_shape.h).
 #pragma once
 
+#include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,14 +20,25 @@ namespace jgpm {
 // What a part is dressed in: the synthetic clips colour parts by it.
 enum class BodyMaterial { kSkin, kShirt, kTrousers, kShoes };
 
+// Regions of the body whose widths scale together.
+enum class BodyRegion { kTorso, kHead, kArms, kThighs, kShins };
+constexpr int kNumBodyRegions = 5;
+using RegionScales = std::array<double, kNumBodyRegions>;
+constexpr RegionScales kUnitRegionScales = {1, 1, 1, 1, 1};
+std::string_view BodyRegionName(BodyRegion region);  // "torso", "head", "arms", "thighs", "shins"
+
 struct BodyPart {
   std::string name;
+  BodyRegion region = BodyRegion::kTorso;
   // Kinematics columns (bone ends; column 0 the root position) of its two ends.
   int from_joint = 0;
   int to_joint = 0;
   double radius_from_mm = 0;
   double radius_to_mm = 0;
   BodyMaterial material = BodyMaterial::kShirt;
+  // The radii at width scale 1 and region scale 1.
+  double base_from_mm = 0;
+  double base_to_mm = 0;
 };
 
 // A part placed in the world.
@@ -48,14 +63,24 @@ class BodyModel {
   BodyModel(const Skeleton& skeleton, const BodyModelOptions& options, const std::string& source);
 
   const std::vector<BodyPart>& parts() const { return parts_; }
+  // Every part's radii: its base radii times the width scale times its region's scale.
+  // Not thread-safe with Place: set between frames.
+  void SetRegionScales(const RegionScales& scales);
+  const RegionScales& region_scales() const { return region_scales_; }
   int NumParts() const { return static_cast<int>(parts_.size()); }
   // The parts placed at joint positions (Kinematics::Compute's output, millimetres).
   void Place(const Eigen::Matrix3Xd& joint_in_world_mm, std::vector<Capsule>* capsules) const;
   std::vector<Capsule> Place(const Eigen::Matrix3Xd& joint_in_world_mm) const;
+  // The same with every radius times `scale` and the regions scaled by `shape` instead of
+  // region_scales().
+  void Place(const Eigen::Matrix3Xd& joint_in_world_mm, double scale, const RegionScales& shape,
+             std::vector<Capsule>* capsules) const;
 
  private:
   std::vector<BodyPart> parts_;
   int num_joints_ = 0;
+  double width_scale_ = 1;
+  RegionScales region_scales_ = kUnitRegionScales;
 };
 
 }  // namespace jgpm

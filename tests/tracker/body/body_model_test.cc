@@ -57,6 +57,45 @@ TEST(BodyModelTest, WidthScaleScalesEveryRadius) {
   }
 }
 
+TEST(BodyModelTest, RegionScalesScaleTheirRegionsPartsOnly) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+  BodyModelOptions options;
+  options.width_scale = 1.1;
+  const BodyModel normal(skeleton, options, "35.asf");
+  BodyModel shaped(skeleton, options, "35.asf");
+  const RegionScales shape = {1.2, 0.9, 1.0, 1.3, 0.8};
+  shaped.SetRegionScales(shape);
+  EXPECT_EQ(shaped.region_scales(), shape);
+  int thighs = 0;
+  for (int i = 0; i < normal.NumParts(); ++i) {
+    const BodyPart& part = shaped.parts()[i];
+    const double expected = shape[static_cast<int>(part.region)];
+    // By name, not by the region table: a thigh is 1.3 wider, a shin 0.8, the rest as set.
+    if (part.name == "lfemur" || part.name == "rfemur") {
+      EXPECT_EQ(part.region, BodyRegion::kThighs);
+      ++thighs;
+    }
+    if (part.name == "ltibia" || part.name == "lfoot") EXPECT_EQ(part.region, BodyRegion::kShins);
+    if (part.name == "head") EXPECT_EQ(part.region, BodyRegion::kHead);
+    if (part.name == "rhand") EXPECT_EQ(part.region, BodyRegion::kArms);
+    if (part.name == "chest") EXPECT_EQ(part.region, BodyRegion::kTorso);
+    EXPECT_DOUBLE_EQ(part.radius_from_mm, expected * normal.parts()[i].radius_from_mm) << part.name;
+    EXPECT_DOUBLE_EQ(part.radius_to_mm, expected * normal.parts()[i].radius_to_mm) << part.name;
+  }
+  EXPECT_EQ(thighs, 2);
+  // Placing with a shape and a scale equals setting the shape and scaling the radii.
+  const Eigen::Matrix3Xd rest = Kinematics(skeleton).Compute(std::vector<double>(skeleton.NumChannels(), 0.0).data());
+  std::vector<Capsule> direct;
+  normal.Place(rest, 1.5, shape, &direct);
+  const std::vector<Capsule> set = shaped.Place(rest);
+  for (size_t i = 0; i < set.size(); ++i) {
+    EXPECT_DOUBLE_EQ(direct[i].radius_from_mm, 1.5 * set[i].radius_from_mm);
+    EXPECT_DOUBLE_EQ(direct[i].radius_to_mm, 1.5 * set[i].radius_to_mm);
+    EXPECT_EQ(direct[i].from_mm, set[i].from_mm);
+  }
+  EXPECT_EQ(BodyRegionName(BodyRegion::kThighs), "thighs");
+}
+
 TEST(BodyModelTest, BadInputIsNamed) {
   Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
   BodyModelOptions options;
