@@ -31,6 +31,10 @@ class JointSpaceStateModel : public StateModel {
   double Evaluate(const double* state, Eigen::Matrix3Xd* joints) const override;
   Eigen::VectorXd Pose(const double* state) const override;
   std::vector<std::string> CoordinateNames() const override;
+  void SetProportions(const Proportions& proportions) override {
+    StateModel::SetProportions(proportions);
+    placer_.SetProportions(proportions);
+  }
 
  private:
   bool known_size_ = false;

@@ -14,7 +14,7 @@ double WrapAngle(double a) { return a - 2 * std::numbers::pi * std::floor((a + s
 }  // namespace
 
 LatentStateModel::LatentStateModel(const GaitModel& model, const PoseTable& table, const LatentDynamics& dynamics)
-    : model_(model), table_(table), d_(dynamics), step_(MeanLatentStep(model)) {}
+    : model_(model), table_(table), limbs_(model.skeleton()), d_(dynamics), step_(MeanLatentStep(model)) {}
 
 void LatentStateModel::Sample(const InitialGuess& guess, Random* r, double* s) const {
   if (guess.coordinates.size() == 3) {
@@ -76,6 +76,7 @@ double LatentStateModel::Evaluate(const double* s, Eigen::Matrix3Xd* joints) con
   thread_local Eigen::Matrix3Xd relative;
   double foot = 0, log_density = 0;
   table_.Lookup(Eigen::Vector3d(s[0], s[1], s[2]), &relative, &foot, &log_density);
+  limbs_.Apply(proportions_, &relative, &foot);
   PlaceInWorld(relative, foot, s[3], s[4], s[5], s[7], kFootClearanceMm, joints);
   return log_density;
 }

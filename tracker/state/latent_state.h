@@ -54,6 +54,7 @@ class LatentStateModel : public StateModel {
  private:
   const GaitModel& model_;
   const PoseTable& table_;
+  LimbScaler limbs_;
   LatentDynamics d_;
   double step_;  // mean latent step between consecutive training poses
 };

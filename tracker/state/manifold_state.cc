@@ -17,7 +17,7 @@ double WrapAngle(double a) { return Wrap(a + std::numbers::pi, 2 * std::numbers:
 }  // namespace
 
 ManifoldStateModel::ManifoldStateModel(const GaitModel& model, const PoseTable& table, const ManifoldDynamics& dynamics)
-    : model_(model), table_(table), d_(dynamics) {
+    : model_(model), table_(table), limbs_(model.skeleton()), d_(dynamics) {
   if (!model.HasManifold() || !table.manifold()) {
     ThrowInputError("model " + std::string(ModelKindName(model.kind())),
                     "has no gait manifold (the JGPM family has); track it in its latent space");
@@ -93,6 +93,7 @@ double ManifoldStateModel::Evaluate(const double* s, Eigen::Matrix3Xd* joints) c
   thread_local Eigen::Matrix3Xd relative;
   double foot = 0, log_density = 0;
   table_.Lookup(Eigen::Vector3d(s[0], s[1], s[2]), &relative, &foot, &log_density);
+  limbs_.Apply(proportions_, &relative, &foot);
   PlaceInWorld(relative, foot, s[3], s[4], s[5], s[7], kFootClearanceMm, joints);
   return log_density;
 }

@@ -73,6 +73,7 @@ class ManifoldStateModel : public StateModel {
  private:
   const GaitModel& model_;
   const PoseTable& table_;
+  LimbScaler limbs_;
   ManifoldDynamics d_;
 };
 

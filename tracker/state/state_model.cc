@@ -15,7 +15,8 @@ void StateModel::Diffuse(double scale, Random* random, double* state) const {
 
 double StateModel::Period(int) const { return 0; }
 
-PosePlacer::PosePlacer(const Skeleton& skeleton) : layout_(skeleton, "the model's skeleton"), kinematics_(skeleton) {
+PosePlacer::PosePlacer(const Skeleton& skeleton)
+    : layout_(skeleton, "the model's skeleton"), kinematics_(skeleton), limbs_(skeleton) {
   feet_ = skeleton.FootBones();
   if (feet_.empty()) ThrowInputError("the model's skeleton", "has no lfoot, rfoot, ltoes or rtoes bone to stand on");
 }
@@ -30,6 +31,7 @@ void PosePlacer::Relative(const double* pose, Eigen::Matrix3Xd* relative, double
   double foot = 1e300;
   for (int b : feet_) foot = std::min(foot, (*relative)(1, b));
   *foot_height_mm = foot;
+  limbs_.Apply(proportions_, relative, foot_height_mm);
 }
 
 void PosePlacer::Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,

@@ -18,6 +18,7 @@
 #include "io/gait/gait_pose.h"
 #include "io/mocap/kinematics.h"
 #include "io/mocap/skeleton.h"
+#include "tracker/state/proportions.h"
 #include "tracker/state/random.h"
 
 namespace jgpm {
@@ -81,6 +82,14 @@ class StateModel {
   virtual Eigen::VectorXd Pose(const double* state) const = 0;
   // The state's own coordinates for people and files (e.g. "phase", "gait", "scale").
   virtual std::vector<std::string> CoordinateNames() const = 0;
+
+  // The person's limb lengths (proportions.h), applied by Evaluate: set between frames
+  // (not while particles are evaluated).
+  virtual void SetProportions(const Proportions& proportions) { proportions_ = proportions; }
+  const Proportions& proportions() const { return proportions_; }
+
+ protected:
+  Proportions proportions_;
 };
 
 // Root-relative bone ends (size 1, facing +z, as a pose table or forward kinematics gives
@@ -108,8 +117,11 @@ class PosePlacer {
   // Copies what it needs from the skeleton. InputError when it lacks a gait joint's bone.
   explicit PosePlacer(const Skeleton& skeleton);
   const GaitPoseLayout& layout() const { return layout_; }
-  // Root-relative bone ends (size 1, facing +z) and the lowest foot joint's height.
+  // Root-relative bone ends (size 1, facing +z, limbs in proportion) and the lowest foot
+  // joint's height.
   void Relative(const double* pose, Eigen::Matrix3Xd* relative, double* foot_height_mm) const;
+  // Set between placements, not during them.
+  void SetProportions(const Proportions& proportions) { proportions_ = proportions; }
   // Placed as PlaceInWorld places them.
   void Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
              Eigen::Matrix3Xd* world) const;
@@ -118,6 +130,8 @@ class PosePlacer {
   GaitPoseLayout layout_;
   Kinematics kinematics_;
   std::vector<int> feet_;
+  LimbScaler limbs_;
+  Proportions proportions_;
 };
 
 }  // namespace jgpm
