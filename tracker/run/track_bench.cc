@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 
+#include <Eigen/Cholesky>
 #include <opencv2/imgproc.hpp>
 
 #include "io/base/error.h"
@@ -105,6 +106,37 @@ bool PersonInView(const ClipGroundTruth& truth, int frame) {
   return false;
 }
 
+double TriangulatedByWrittenCameras(const ClipGroundTruth& truth, int frames) {
+  const int n = static_cast<int>(truth.cameras.size());
+  if (truth.render_cameras.size() != truth.cameras.size() || n < 2) return -1;
+  std::vector<Eigen::Vector3d> centres;
+  for (const Camera& camera : truth.cameras) centres.push_back(camera.CentreInWorld());
+  std::vector<Eigen::Matrix3Xd> placed, target;
+  for (int k = 0; k < frames && k < static_cast<int>(truth.frames.size()); ++k) {
+    const Eigen::Matrix3Xd& joints = truth.frames[k].joints_mm;
+    Eigen::Matrix3Xd seen = joints;
+    for (int j = 0; j < joints.cols(); ++j) {
+      // Least squares over the rays: sum_c (I - d d^T) (X - C_c) = 0.
+      Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d b = Eigen::Vector3d::Zero();
+      int rays = 0;
+      for (int c = 0; c < n; ++c) {
+        Eigen::Vector2d pixel;
+        if (!truth.render_cameras[c].Project(joints.col(j), &pixel)) continue;
+        const Eigen::Vector3d d = truth.cameras[c].PixelRaysInWorld(pixel).col(0);
+        const Eigen::Matrix3d away = Eigen::Matrix3d::Identity() - d * d.transpose();
+        a += away;
+        b += away * centres[c];
+        ++rays;
+      }
+      if (rays >= 2) seen.col(j) = a.ldlt().solve(b);
+    }
+    placed.push_back(seen);
+    target.push_back(joints);
+  }
+  return CompareTracks(placed, truth.joint_names, target, truth.joint_names, Bodytrack14()).absolute_mm;
+}
+
 LostInView CountLostInView(const std::vector<TrackStatus>& status, const std::vector<bool>& in_view) {
   JGPM_CHECK(status.size() == in_view.size());
   LostInView counted;
@@ -190,12 +222,14 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
                                               : static_cast<int>(truth.frames.size());
     std::vector<PriorFloors> floors(models.size());
     for (size_t m = 0; m < models.size(); ++m) floors[m] = ModelFloors(*models[m], truth, frames);
+    const double triangulated = TriangulatedByWrittenCameras(truth, frames);
     for (const Method& method : methods) {
       TrackBenchRow row;
       row.clip = clip.name;
       row.model = Stem(options.models[method.model]);
       row.method = method.name;
       row.cameras = static_cast<int>(truth.cameras.size());
+      row.triangulated_bt14_mm = triangulated;
       if (method.space == StateSpace::kModel) {  // the floor on the skeleton tracked on
         const PriorFloors& f = floors[method.model];
         row.floor_bt14_root_mm = method.known_skeleton ? f.subject_bt14 : f.model_bt14;
@@ -232,16 +266,17 @@ std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows) {
   std::string csv =
       "clip,model,method,cameras,frames,seeds,bt14_mm,bt14_root_mm,bt14_procrustes_mm,g17_mm,g17_root_mm,"
       "g17_procrustes_mm,search_bt14_mm,search_g17_root_mm,floor_bt14_root_mm,floor_g17_root_mm,failure_rate,"
-      "swap_rate,lost_rate,fps,fps_with_input,evaluations_per_frame,lost_in_view_rate,longest_lost_in_view\n";
+      "swap_rate,lost_rate,fps,fps_with_input,evaluations_per_frame,lost_in_view_rate,longest_lost_in_view,"
+      "triangulated_bt14_mm\n";
   char line[640];
   for (const TrackBenchRow& r : rows) {
     std::snprintf(line, sizeof(line),
-                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f,%.4f,%d\n",
+                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f,%.4f,%d,%.2f\n",
                   r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.cameras, r.frames, r.seeds, r.bt14_mm,
                   r.bt14_root_mm, r.bt14_procrustes_mm, r.g17_mm, r.g17_root_mm, r.g17_procrustes_mm,
                   r.search_bt14_mm, r.search_g17_root_mm, r.floor_bt14_root_mm, r.floor_g17_root_mm, r.failure_rate,
                   r.swap_rate, r.lost_rate, r.fps, r.fps_with_input, r.evaluations_per_frame, r.lost_in_view_rate,
-                  r.longest_lost_in_view);
+                  r.longest_lost_in_view, r.triangulated_bt14_mm);
     csv += line;
   }
   return csv;

@@ -51,6 +51,7 @@ struct TrackBenchRow {
   double fps = 0, evaluations_per_frame = 0;
   double fps_with_input = 0;  // with reading the frames (and background subtraction)
   double floor_bt14_root_mm = -1, floor_g17_root_mm = -1;         // -1: not applicable
+  double triangulated_bt14_mm = -1;  // TriangulatedByWrittenCameras; -1: not applicable
   // The 17 gait joints' absolute error (refined), averaged over the seeds: per joint, and
   // per frame (NaN where a seed had no estimate).
   std::vector<std::string> joints;
@@ -69,6 +70,16 @@ struct PriorFloors {
   double model_bt14 = -1, model_g17 = -1;
 };
 PriorFloors ModelFloors(const GaitModel& model, const ClipGroundTruth& truth, int frames);
+
+// What the calibration error of a clip (--calibration-error) does on its own: the true
+// joints of the first `frames` frames, seen by the cameras that rendered the images and
+// triangulated by the written ones (each joint the least-squares meeting point of the
+// written cameras' rays through its true pixels), against the truth; bodytrack's 14
+// joints, absolute mm. Triangulation knows nothing else; the tracker also knows that the
+// feet are on the floor and how big people are, which can place it closer (the 2-camera
+// calibration clip: 127 mm triangulated, 109 tracked). -1 when the written cameras are the
+// rendering ones or fewer than two.
+double TriangulatedByWrittenCameras(const ClipGroundTruth& truth, int frames);
 
 // Whether the clip's person is in view at `frame`: half of the true joints or more inside
 // the image of some camera that rendered the clip (render_cameras when the clip has them).

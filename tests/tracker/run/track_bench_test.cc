@@ -11,6 +11,9 @@
 
 #include "io/base/text_reader.h"
 #include "io/gait/gait_dataset.h"
+#include "io/mocap/kinematics.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/amc.h"
 #include "prior/model/train.h"
 #include "test_support.h"
 
@@ -67,6 +70,40 @@ TEST(TrackBench, PersonInViewWhenHalfTheJointsAreInAnImage) {
   truth.render_cameras.push_back(LookAtCamera("r", 320, 240, 280, {20000, 1000, -5000}, {20000, 1000, 0}));
   EXPECT_FALSE(PersonInView(truth, 0));
   EXPECT_TRUE(PersonInView(truth, 1));
+}
+
+TEST(TrackBench, TriangulatedByTheWrittenCamerasIsWhereTheyPutTheTruth) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/35/35_01.amc", skeleton);
+  ClipGroundTruth truth;
+  truth.joint_names = skeleton.BoneNames();
+  for (int k = 0; k < 20; ++k) {
+    ClipFrame frame;
+    frame.joints_mm = Kinematics(skeleton).Compute(motion.Frame(4 * k));
+    truth.frames.push_back(frame);
+  }
+  const Eigen::Vector3d at(truth.frames[0].joints_mm(0, 0), 900, truth.frames[0].joints_mm(2, 0));
+  const Eigen::Vector3d side(4500, 700, 300), front(-200, 900, 5000);
+  truth.render_cameras = {LookAtCamera("a", 320, 240, 300, at + side, at), LookAtCamera("b", 320, 240, 300, at + front, at)};
+  // Written cameras all moved by the same 50 mm: they place everything 50 mm over.
+  const Eigen::Vector3d moved(30, 0, -40);
+  truth.cameras = {LookAtCamera("a", 320, 240, 300, at + side + moved, at + moved),
+                   LookAtCamera("b", 320, 240, 300, at + front + moved, at + moved)};
+  EXPECT_NEAR(TriangulatedByWrittenCameras(truth, 20), 50, 1e-6);
+  // The rendering cameras themselves: nothing lost.
+  truth.cameras = truth.render_cameras;
+  EXPECT_NEAR(TriangulatedByWrittenCameras(truth, 20), 0, 1e-6);
+  // One camera turned by half a degree about its own centre: some tens of millimetres at 4.5 m.
+  truth.cameras[0] = LookAtCamera("a", 320, 240, 300, at + side, at + Eigen::Vector3d(0, 0, 40));
+  const double turned = TriangulatedByWrittenCameras(truth, 20);
+  EXPECT_GT(turned, 5);
+  EXPECT_LT(turned, 60);
+  // Not applicable: exact cameras (no rendering ones written), or one camera.
+  truth.render_cameras.clear();
+  EXPECT_EQ(TriangulatedByWrittenCameras(truth, 20), -1);
+  truth.render_cameras = {truth.cameras[0]};
+  truth.cameras.resize(1);
+  EXPECT_EQ(TriangulatedByWrittenCameras(truth, 20), -1);
 }
 
 ClipGroundTruth Trial(const std::string& subject, const std::string& trial, int frames) {
