@@ -79,6 +79,8 @@ class PoseRefiner {
                 int frame);
   // Forgets the person (a new start).
   void Reset();
+  // The person's limb lengths (tracker/state/proportions.h); set between frames.
+  void SetProportions(const Proportions& proportions) { placer_.SetProportions(proportions); }
   const Eigen::VectorXd& offset() const { return offset_; }
 
  private:

@@ -56,7 +56,8 @@ bool TrackerOptions::Check(std::string* why) const {
     if (why) *why = problem;  // `why` may be null
     return false;
   }
-  return annealing.Check(why) && likelihood.Check(why) && table.Check(why) && alignment.Check(why);
+  return annealing.Check(why) && likelihood.Check(why) && table.Check(why) && alignment.Check(why) &&
+         shape.Check(why);
 }
 
 double TrackedFrame::MeanIou() const {
@@ -78,7 +79,12 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
       body_(model.skeleton(), {}, "the model's skeleton"),
       likelihood_(cameras, options.likelihood),
       placer_(model.skeleton()),
-      alignment_(cameras, options.alignment) {
+      alignment_(cameras, options.alignment),
+      shape_([&options] {
+        BodyShapeOptions shape = options.shape;
+        shape.lengths = shape.lengths && !options.known_size;  // the subject's own bones
+        return shape;
+      }()) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("tracking options", why);
   if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
@@ -178,6 +184,9 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const
 
 void Tracker::StartAt(const InitialGuess& guess, int frame) {
   if (refiner_) refiner_->Reset();
+  // A start may be someone else: the model's build again.
+  shape_.Reset();
+  ApplyBuild();
   filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, frame);
   started_ = true;
   fresh_ = true;
@@ -364,16 +373,33 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     out.evaluations += r.evaluations;
     placer_.Place(out.pose_deg.data(), r.x_mm, r.z_mm, r.heading_rad, r.size, &out.joints_mm);
   }
+  out.build = shape_.build();
   {
-    std::vector<Capsule> capsules;
-    body_.Place(out.joints_mm, &capsules);
-    for (Capsule& c : capsules) {
-      c.radius_from_mm *= out.size * out.width;
-      c.radius_to_mm *= out.size * out.width;
-    }
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
-    likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
-    if (alignment_.active() && out.MeanIou() >= options_.lost_iou) AlignViews(capsules, observations, out);
+    std::vector<Capsule> capsules;
+    Eigen::Matrix3Xd joints;
+    // The estimate drawn with a build (its pose, place, heading and size), scored.
+    const auto score = [&](const Build& build, std::vector<CameraScore>* scores) {
+      const Eigen::Matrix3Xd* drawn = &out.joints_mm;
+      if (!(build.lengths == out.build.lengths)) {
+        placer_.SetProportions(build.lengths);
+        placer_.Place(out.pose_deg.data(), out.joints_mm(0, 0), out.joints_mm(2, 0), out.heading_rad, out.size, &joints);
+        placer_.SetProportions(out.build.lengths);
+        drawn = &joints;
+      }
+      body_.Place(*drawn, out.size * out.width, build.widths, &capsules);
+      likelihood_.Cost(capsules, observations, &workspace, scores);
+    };
+    score(out.build, &out.cameras);
+    if (out.MeanIou() >= options_.lost_iou) {
+      if (alignment_.active()) AlignViews(capsules, observations, out);
+      std::vector<CameraScore> scores;
+      shape_.Update([&](const Build& build) {
+        score(build, &scores);
+        return ShapeCost(scores);
+      });
+      ApplyBuild();
+    }
   }
   // Evidence of loss: the cameras that see something where the person is expected, or
   // draw the estimate, explaining it badly. A camera that sees nobody there and whose
@@ -410,6 +436,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   finish(&out);
   return out;
+}
+
+void Tracker::ApplyBuild() {
+  const Build& build = shape_.build();
+  body_.SetRegionScales(build.widths);
+  state_model_->SetProportions(build.lengths);
+  placer_.SetProportions(build.lengths);
+  if (refiner_) refiner_->SetProportions(build.lengths);
 }
 
 void Tracker::SetEstimate(TrackedFrame* out) const {

@@ -5,6 +5,9 @@
 // the annealed particle filter (tracker/filter/annealed_filter.h) weighs them by how well their
 // bodies' silhouettes explain the masks (tracker/filter/likelihood.h).
 //
+// The person's build (widths region by region, the limbs' lengths) is learnt from each
+// frame explained well and kept beside the particles (tracker/filter/body_shape.h).
+//
 // Start: the first frames' masks give the person's place, height and direction of travel
 // (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there.
 // Each frame: predict, anneal, estimate. A dropped frame is predicted only. When the
@@ -51,6 +54,7 @@
 #include "prior/model/gait_model.h"
 #include "tracker/body/body_model.h"
 #include "tracker/filter/annealed_filter.h"
+#include "tracker/filter/body_shape.h"
 #include "tracker/filter/likelihood.h"
 #include "tracker/filter/pose_refiner.h"
 #include "tracker/filter/thread_pool.h"
@@ -72,6 +76,7 @@ struct TrackerOptions {
   PoseTableOptions table;
   RefinementOptions refinement;   // after the search, in joint-angle space (not for joint-space)
   ViewAlignmentOptions alignment; // each camera's residual calibration error, learnt
+  BodyShapeOptions shape;         // the person's build, region by region, learnt
   StateSpace space = StateSpace::kModel;
   bool known_size = false;        // the model's skeleton is the subject's own (jgpm track
                                   // --asf): size 1, neither estimated nor refined
@@ -117,6 +122,8 @@ struct TrackedFrame {
   double size = 1;                  // the skeleton's scale and the heading (radians about +y)
   double heading_rad = 0;           // the joints were placed with
   double width = 1;                 // the body's widths' scale beyond the size
+  Build build;                      // the person's build as drawn (body_shape.h): each
+                                    // region's widths beyond that, the limbs' lengths
   std::vector<CameraScore> cameras;
   double ess = 0;                   // effective sample size / particles
   int evaluations = 0;              // likelihood evaluations spent on the frame
@@ -141,6 +148,7 @@ class Tracker {
   const TrackerOptions& options() const { return options_; }
   const AnnealedFilter& filter() const { return *filter_; }
   const ViewAlignment& alignment() const { return alignment_; }
+  const BodyShape& shape() const { return shape_; }
 
   // Starts from a known guess (e.g. `--init truth`) at the next frame; `frame` (the first
   // frame tracked from it) keys the particles' random numbers, so that each restart draws
@@ -163,6 +171,8 @@ class Tracker {
   std::vector<cv::Rect> Regions(const std::vector<Frame>* frames) const;
   // The frame's pose, bone ends, size, width and heading from out->state (as ExactPose).
   void SetEstimate(TrackedFrame* out) const;
+  // The build learnt so far, to the body, the state model and the placers.
+  void ApplyBuild();
   // The cameras that see the estimate (placed as `capsules`) line their views up with it
   // a little more (ViewAlignment).
   void AlignViews(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,
@@ -180,6 +190,7 @@ class Tracker {
   std::unique_ptr<PoseRefiner> refiner_;
   PosePlacer placer_;
   ViewAlignment alignment_;
+  BodyShape shape_;
   bool started_ = false, fresh_ = false;
   std::vector<cv::Rect> start_boxes_;
   double last_time_s_ = 0;

@@ -116,8 +116,7 @@ class OverlayWriter {
   const std::vector<cv::Mat>& Write(const Frame& frame, const TrackedFrame& f) {
     capsules_.clear();
     if (f.state.size()) {
-      tracker_.body().Place(f.joints_mm, &capsules_);
-      for (Capsule& c : capsules_) c.radius_from_mm *= f.size, c.radius_to_mm *= f.size;
+      tracker_.body().Place(f.joints_mm, f.size * f.width, f.build.widths, &capsules_);
     }
     shown_.resize(run_.cameras.size());
     for (size_t c = 0; c < run_.cameras.size(); ++c) {

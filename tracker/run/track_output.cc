@@ -1,9 +1,11 @@
 #include "tracker/run/track_output.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string_view>
 
 #include <opencv2/imgproc.hpp>
 
@@ -51,6 +53,28 @@ std::string ScaledAsf(const std::string& asf, double length_scale, double size) 
   char line[64];
   std::snprintf(line, sizeof(line), "length %.9g", length_scale / size);
   return asf.substr(0, at) + line + asf.substr(end);
+}
+
+// The ASF text with each limb bone's `length` times the proportion (tracker/state/proportions.h).
+std::string ProportionedAsf(std::string asf, const Proportions& proportions) {
+  for (const char* side : {"l", "r"}) {
+    for (const char* limb : {"femur", "tibia", "foot", "toes", "humerus", "radius", "wrist", "hand", "fingers", "thumb"}) {
+      const bool leg = std::string_view(limb) == "femur" || std::string_view(limb) == "tibia" ||
+                       std::string_view(limb) == "foot" || std::string_view(limb) == "toes";
+      const std::string name = std::string("name ") + side + limb;
+      size_t block = asf.find(name);
+      while (block != std::string::npos && block + name.size() < asf.size() && !std::isspace(asf[block + name.size()]))
+        block = asf.find(name, block + 1);
+      const size_t at = block == std::string::npos ? std::string::npos : asf.find("length", block);
+      if (at == std::string::npos) continue;  // the placer needed every limb bone; not this one
+      const size_t begin = at + 6, end = asf.find('\n', begin);
+      const double length = std::strtod(asf.c_str() + begin, nullptr);
+      char value[64];
+      std::snprintf(value, sizeof(value), " %.9g", length * (leg ? proportions.legs : proportions.arms));
+      asf.replace(begin, end - begin, value);
+    }
+  }
+  return asf;
 }
 
 }  // namespace
@@ -105,6 +129,10 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
       j["rate"] = f.state[k + 3];
       j["size"] = f.size;
       j["width"] = f.width;
+      json widths = json::object();
+      for (int r = 0; r < kNumBodyRegions; ++r)
+        widths[std::string(BodyRegionName(static_cast<BodyRegion>(r)))] = f.build.widths[r];
+      j["build"] = {{"widths", widths}, {"legs", f.build.lengths.legs}, {"arms", f.build.lengths.arms}};
       json coordinates = json::object();
       for (size_t c = 0; c < run.coordinate_names.size() && static_cast<int>(c) < k; ++c) {
         coordinates[run.coordinate_names[c]] = f.state[c];
@@ -133,12 +161,17 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
 }
 
 TrackedMotion MakeTrackedMotion(const TrackRun& run, const GaitModel& model) {
-  std::vector<double> sizes;
-  for (const TrackedFrame& f : run.frames)
-    if (f.state.size()) sizes.push_back(f.size);
+  std::vector<double> sizes, legs, arms;
+  for (const TrackedFrame& f : run.frames) {
+    if (!f.state.size()) continue;
+    sizes.push_back(f.size);
+    legs.push_back(f.build.lengths.legs);
+    arms.push_back(f.build.lengths.arms);
+  }
   const double size = Median(sizes);
   TrackedMotion t;
-  t.asf = ScaledAsf(model.data().skeleton_asf, model.skeleton().length_scale, size);
+  t.asf = ProportionedAsf(ScaledAsf(model.data().skeleton_asf, model.skeleton().length_scale, size),
+                          {Median(legs), Median(arms)});
   t.skeleton = ParseAsf(t.asf, "the tracked skeleton");
   const GaitPoseLayout layout(t.skeleton, "the tracked skeleton");
   const Kinematics kinematics(t.skeleton);

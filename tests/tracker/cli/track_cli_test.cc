@@ -109,6 +109,28 @@ TEST(TrackCli, TracksACleanClip) {
   const std::vector<std::string> statuses = Statuses(out);
   ASSERT_EQ(statuses.size(), static_cast<size_t>(kFrames));
   EXPECT_EQ(std::count(statuses.begin(), statuses.end(), "tracked"), kFrames);
+  // The build learnt, per frame; the written skeleton's limbs in its (median) proportion
+  // to the model's: legs against the spine, arms against the spine.
+  const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+  std::vector<double> legs, arms;
+  for (const auto& frame : poses["frames"]) {
+    EXPECT_EQ(frame["build"]["widths"]["torso"].get<double>(), 1.0);
+    legs.push_back(frame["build"]["legs"].get<double>());
+    arms.push_back(frame["build"]["arms"].get<double>());
+    EXPECT_GE(legs.back(), 0.85);
+    EXPECT_LE(legs.back(), 1.15);
+  }
+  std::nth_element(legs.begin(), legs.begin() + legs.size() / 2, legs.end());
+  std::nth_element(arms.begin(), arms.begin() + arms.size() / 2, arms.end());
+  const Skeleton tracked = ReadAsf(out / "tracked.asf");
+  const Skeleton model = ParseAsf(ReadJsonFile(f.model, "model")["model"]["skeleton"]["asf"].get<std::string>(), "model");
+  const auto ratio = [](const Skeleton& s, const char* limb) {
+    return s.bones[s.FindBone(limb)].length / s.bones[s.FindBone("lowerback")].length;
+  };
+  EXPECT_NEAR(ratio(tracked, "ltibia") / ratio(model, "ltibia"), legs[legs.size() / 2], 1e-6);
+  EXPECT_NEAR(ratio(tracked, "rfemur") / ratio(model, "rfemur"), legs[legs.size() / 2], 1e-6);
+  EXPECT_NEAR(ratio(tracked, "lradius") / ratio(model, "lradius"), arms[arms.size() / 2], 1e-6);
+  EXPECT_NEAR(ratio(tracked, "upperback") / ratio(model, "upperback"), 1, 1e-6);
 }
 
 TEST(TrackCli, DroppedFramesArePredicted) {

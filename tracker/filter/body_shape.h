@@ -1,0 +1,79 @@
+// The person's build, learnt from the silhouettes and kept as slowly varying state beside
+// the particles: one width scale per region of the body (tracker/body/body_model.h: torso,
+// head, arms, thighs, shins) and the limbs' lengths for the height
+// (tracker/state/proportions.h: legs, arms). The particles' own width (state_model.h) is
+// one scale on every part; with it alone, a coat's wide torso and thighs could only be
+// explained by a body wide everywhere, whose fat shins then fit the gap between the legs
+// badly; and their size is one scale on every bone, so a walker of short legs was drawn
+// with the hips too high.
+//
+// The torso is the reference: the particles' width is the torso's width, their size its
+// length, and the build gives the other regions' widths and the limbs' lengths relative
+// to it (fitting the torso too would leave one direction free, all regions wider and the
+// particles' width narrower, along which the fit drifts where the silhouettes are flat).
+// After each frame explained well, each of these is tried `probe` larger and smaller on
+// the frame's estimate. The parabola through the three costs (in the scale's logarithm)
+// gives the step to its minimum (at most one probe; the probe's direction downhill when
+// the parabola has no minimum), and the scale moves by `rate` of it.
+//
+// Rule for the constants: a probe is about half the spread of what it measures, beyond
+// the silhouettes' noise from one frame to the next: widths 10% (the realism clips' builds
+// spread +-25%, tracker/clip/clip_body.h), lengths 4% (the CMU subjects' limbs, +-7%).
+// The rate is 0.1, so the build settles in about ten frames, inside the start window (15
+// frames). The bounds: widths the builds' range widened by what a coat or a skirt adds
+// (30%), lengths twice the subjects' spread.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tracker/body/body_model.h"
+#include "tracker/filter/likelihood.h"
+#include "tracker/state/proportions.h"
+
+namespace jgpm {
+
+struct BodyShapeOptions {
+  bool enabled = true;
+  bool lengths = true;  // false: the limbs' lengths are known (the subject's own skeleton)
+  double width_probe = 0.1, length_probe = 0.04;
+  double rate = 0.1;
+  double min_width = 0.7, max_width = 1.4;
+  double min_length = 0.85, max_length = 1.15;
+
+  bool Check(std::string* why) const;
+};
+
+struct Build {
+  RegionScales widths = kUnitRegionScales;  // widths[torso] stays 1
+  Proportions lengths;
+  bool operator==(const Build&) const = default;
+};
+
+// What the fit minimises: over the cameras, the pixels where body and mask disagree,
+// |S xor (O n R)|, as a share of the mask. Not the tracker's cost: its outline term charges
+// a body a pixel too wide and not one a pixel too narrow (the outline then lies inside the
+// mask, at distance 0), and its area term forgives a pixel either way, so on it every thin
+// part narrows to its bound (seen on exact silhouettes: arms and shins at 0.70 for 0.83
+// and 0.74). The plain disagreement is lowest at the true width.
+double ShapeCost(const std::vector<CameraScore>& scores);
+
+class BodyShape {
+ public:
+  explicit BodyShape(const BodyShapeOptions& options = {});
+
+  const Build& build() const { return build_; }
+  // Back to the model's proportions and the average adult's widths (a new start).
+  void Reset();
+  // One frame: `cost` is the frame's estimate's cost with this build. Calls it once, then
+  // twice per scale fitted (4 widths, and 2 lengths unless known). Costs that are not
+  // finite leave the build as it is.
+  void Update(const std::function<double(const Build&)>& cost);
+
+ private:
+  BodyShapeOptions options_;
+  Build build_;
+};
+
+}  // namespace jgpm
