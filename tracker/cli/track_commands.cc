@@ -311,7 +311,7 @@ void AddTrackCommands(CLI::App& app) {
       ->check(CLI::IsMember({"model", "joint-space"}))
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
-  track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width and the limbs' lengths (body_shape.h)");
+  track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
@@ -356,7 +356,7 @@ void AddTrackBench(CLI::App* bench) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
-  track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width and the limbs' lengths (body_shape.h)");
+  track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track_bench->callback([b] { RunBench(*b); });
 }
 

@@ -16,12 +16,17 @@
 // gives the step to its minimum (at most one probe; the probe's direction downhill when
 // the parabola has no minimum), and the scale moves by `rate` of it.
 //
+// The floor under the person (a ramp, a floor the calibration puts a little off) is learnt
+// the same way, in millimetres, when two cameras or more see the person: in one view a
+// lower floor and a person farther away look alike.
+//
 // Rule for the constants: a probe is about half the spread of what it measures, beyond
 // the silhouettes' noise from one frame to the next: widths 10% (the realism clips' builds
-// spread +-25%, tracker/clip/clip_body.h), lengths 4% (the CMU subjects' limbs, +-7%).
-// The rate is 0.1, so the build settles in about ten frames, inside the start window (15
-// frames). The bounds: widths the builds' range widened by what a coat or a skirt adds
-// (30%), lengths twice the subjects' spread.
+// spread +-25%, tracker/clip/clip_body.h), lengths 4% (the CMU subjects' limbs, +-7%), the
+// floor 20 mm (a floor calibration's error at 5 m: 0.25 degrees). The rate is 0.1, so the
+// build settles in about ten frames, inside the start window (15 frames). The bounds:
+// widths the builds' range widened by what a coat or a skirt adds (30%), lengths twice the
+// subjects' spread, the floor 300 mm (a few steps).
 #pragma once
 
 #include <functional>
@@ -41,6 +46,7 @@ struct BodyShapeOptions {
   double rate = 0.1;
   double min_width = 0.7, max_width = 1.4;
   double min_length = 0.85, max_length = 1.15;
+  double floor_probe_mm = 20, max_floor_mm = 300;
 
   bool Check(std::string* why) const;
 };
@@ -48,6 +54,7 @@ struct BodyShapeOptions {
 struct Build {
   RegionScales widths = kUnitRegionScales;  // widths[torso] stays 1
   Proportions lengths;
+  double floor_mm = 0;  // the floor's height under the person
   bool operator==(const Build&) const = default;
 };
 
@@ -67,9 +74,10 @@ class BodyShape {
   // Back to the model's proportions and the average adult's widths (a new start).
   void Reset();
   // One frame: `cost` is the frame's estimate's cost with this build. Calls it once, then
-  // twice per scale fitted (4 widths, and 2 lengths unless known). Costs that are not
-  // finite leave the build as it is.
-  void Update(const std::function<double(const Build&)>& cost);
+  // twice per scale fitted (4 widths, 2 lengths unless known, the floor when
+  // `several_views`: two cameras or more see the person). Costs that are not finite leave
+  // the build as it is.
+  void Update(const std::function<double(const Build&)>& cost, bool several_views = false);
 
  private:
   BodyShapeOptions options_;

@@ -81,6 +81,7 @@ class PoseRefiner {
   void Reset();
   // The person's limb lengths (tracker/state/proportions.h); set between frames.
   void SetProportions(const Proportions& proportions) { placer_.SetProportions(proportions); }
+  void SetFloor(double floor_mm) { placer_.SetFloor(floor_mm); }
   const Eigen::VectorXd& offset() const { return offset_; }
 
  private:

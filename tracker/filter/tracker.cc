@@ -381,10 +381,12 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     // The estimate drawn with a build (its pose, place, heading and size), scored.
     const auto score = [&](const Build& build, std::vector<CameraScore>* scores) {
       const Eigen::Matrix3Xd* drawn = &out.joints_mm;
-      if (!(build.lengths == out.build.lengths)) {
+      if (!(build.lengths == out.build.lengths) || build.floor_mm != out.build.floor_mm) {
         placer_.SetProportions(build.lengths);
+        placer_.SetFloor(build.floor_mm);
         placer_.Place(out.pose_deg.data(), out.joints_mm(0, 0), out.joints_mm(2, 0), out.heading_rad, out.size, &joints);
         placer_.SetProportions(out.build.lengths);
+        placer_.SetFloor(out.build.floor_mm);
         drawn = &joints;
       }
       body_.Place(*drawn, out.size * out.width, build.widths, &capsules);
@@ -393,11 +395,15 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     score(out.build, &out.cameras);
     if (out.MeanIou() >= options_.lost_iou) {
       if (alignment_.active()) AlignViews(capsules, observations, out);
+      int views = 0;  // cameras that see the person and draw them
+      for (const CameraScore& c : out.cameras) views += c.observed_px > 0 && c.model_px > 0;
       std::vector<CameraScore> scores;
-      shape_.Update([&](const Build& build) {
-        score(build, &scores);
-        return ShapeCost(scores);
-      });
+      shape_.Update(
+          [&](const Build& build) {
+            score(build, &scores);
+            return ShapeCost(scores);
+          },
+          views >= 2);
       ApplyBuild();
     }
   }
@@ -442,8 +448,13 @@ void Tracker::ApplyBuild() {
   const Build& build = shape_.build();
   body_.SetRegionScales(build.widths);
   state_model_->SetProportions(build.lengths);
+  state_model_->SetFloor(build.floor_mm);
   placer_.SetProportions(build.lengths);
-  if (refiner_) refiner_->SetProportions(build.lengths);
+  placer_.SetFloor(build.floor_mm);
+  if (refiner_) {
+    refiner_->SetProportions(build.lengths);
+    refiner_->SetFloor(build.floor_mm);
+  }
 }
 
 void Tracker::SetEstimate(TrackedFrame* out) const {

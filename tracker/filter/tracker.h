@@ -5,8 +5,9 @@
 // the annealed particle filter (tracker/filter/annealed_filter.h) weighs them by how well their
 // bodies' silhouettes explain the masks (tracker/filter/likelihood.h).
 //
-// The person's build (widths region by region, the limbs' lengths) is learnt from each
-// frame explained well and kept beside the particles (tracker/filter/body_shape.h).
+// The person's build (widths region by region, the limbs' lengths) and, seen by two
+// cameras or more, the floor's height under them are learnt from each frame explained
+// well and kept beside the particles (tracker/filter/body_shape.h).
 //
 // Start: the first frames' masks give the person's place, height and direction of travel
 // (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there.

@@ -132,7 +132,10 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
       json widths = json::object();
       for (int r = 0; r < kNumBodyRegions; ++r)
         widths[std::string(BodyRegionName(static_cast<BodyRegion>(r)))] = f.build.widths[r];
-      j["build"] = {{"widths", widths}, {"legs", f.build.lengths.legs}, {"arms", f.build.lengths.arms}};
+      j["build"] = {{"widths", widths},
+                    {"legs", f.build.lengths.legs},
+                    {"arms", f.build.lengths.arms},
+                    {"floor_mm", f.build.floor_mm}};
       json coordinates = json::object();
       for (size_t c = 0; c < run.coordinate_names.size() && static_cast<int>(c) < k; ++c) {
         coordinates[run.coordinate_names[c]] = f.state[c];

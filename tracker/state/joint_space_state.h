@@ -35,6 +35,10 @@ class JointSpaceStateModel : public StateModel {
     StateModel::SetProportions(proportions);
     placer_.SetProportions(proportions);
   }
+  void SetFloor(double floor_mm) override {
+    StateModel::SetFloor(floor_mm);
+    placer_.SetFloor(floor_mm);
+  }
 
  private:
   bool known_size_ = false;

@@ -77,7 +77,7 @@ double LatentStateModel::Evaluate(const double* s, Eigen::Matrix3Xd* joints) con
   double foot = 0, log_density = 0;
   table_.Lookup(Eigen::Vector3d(s[0], s[1], s[2]), &relative, &foot, &log_density);
   limbs_.Apply(proportions_, &relative, &foot);
-  PlaceInWorld(relative, foot, s[3], s[4], s[5], s[7], kFootClearanceMm, joints);
+  PlaceInWorld(relative, foot, s[3], s[4], s[5], s[7], kFootClearanceMm + floor_mm_, joints);
   return log_density;
 }
 

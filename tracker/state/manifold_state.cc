@@ -94,7 +94,7 @@ double ManifoldStateModel::Evaluate(const double* s, Eigen::Matrix3Xd* joints) c
   double foot = 0, log_density = 0;
   table_.Lookup(Eigen::Vector3d(s[0], s[1], s[2]), &relative, &foot, &log_density);
   limbs_.Apply(proportions_, &relative, &foot);
-  PlaceInWorld(relative, foot, s[3], s[4], s[5], s[7], kFootClearanceMm, joints);
+  PlaceInWorld(relative, foot, s[3], s[4], s[5], s[7], kFootClearanceMm + floor_mm_, joints);
   return log_density;
 }
 

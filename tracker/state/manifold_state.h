@@ -10,7 +10,8 @@
 //   root    += stride(gait, scale) size cadence dt along the heading, + noise: a walker
 //           moves as far per cycle as the stance foot is carried back (prior/pose_table.h),
 //           which ties speed to stride and cadence instead of leaving it free.
-// Assumed: one person walking forwards on a flat floor (y = 0), facing where they go.
+// Assumed: one person walking forwards on a flat floor (y = 0, or the height the tracker
+// learns: StateModel::SetFloor), facing where they go.
 #pragma once
 
 #include "prior/model/gait_model.h"

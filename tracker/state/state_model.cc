@@ -39,7 +39,7 @@ void PosePlacer::Place(const double* pose, double x_mm, double z_mm, double head
   thread_local Eigen::Matrix3Xd relative;
   double foot = 0;
   Relative(pose, &relative, &foot);
-  PlaceInWorld(relative, foot, x_mm, z_mm, heading_rad, size, kFootClearanceMm, world);
+  PlaceInWorld(relative, foot, x_mm, z_mm, heading_rad, size, kFootClearanceMm + floor_mm_, world);
 }
 
 void PlaceInWorld(const Eigen::Matrix3Xd& relative, double foot_height_mm, double x_mm, double z_mm,

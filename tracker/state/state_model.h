@@ -87,9 +87,14 @@ class StateModel {
   // (not while particles are evaluated).
   virtual void SetProportions(const Proportions& proportions) { proportions_ = proportions; }
   const Proportions& proportions() const { return proportions_; }
+  // The floor's height under the person (mm; 0: the world's y = 0): a ramp, or a floor
+  // the calibration puts a little off. Set between frames, like the proportions.
+  virtual void SetFloor(double floor_mm) { floor_mm_ = floor_mm; }
+  double floor_mm() const { return floor_mm_; }
 
  protected:
   Proportions proportions_;
+  double floor_mm_ = 0;
 };
 
 // Root-relative bone ends (size 1, facing +z, as a pose table or forward kinematics gives
@@ -122,6 +127,7 @@ class PosePlacer {
   void Relative(const double* pose, Eigen::Matrix3Xd* relative, double* foot_height_mm) const;
   // Set between placements, not during them.
   void SetProportions(const Proportions& proportions) { proportions_ = proportions; }
+  void SetFloor(double floor_mm) { floor_mm_ = floor_mm; }
   // Placed as PlaceInWorld places them.
   void Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
              Eigen::Matrix3Xd* world) const;
@@ -132,6 +138,7 @@ class PosePlacer {
   std::vector<int> feet_;
   LimbScaler limbs_;
   Proportions proportions_;
+  double floor_mm_ = 0;
 };
 
 }  // namespace jgpm

@@ -9,6 +9,7 @@
 // through background subtraction, they must give exactly what the clip tracked from its
 // videos gives (`--clip --foreground`, the path measured against the truth).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -119,6 +120,7 @@ TEST(TrackCli, TracksACleanClip) {
     arms.push_back(frame["build"]["arms"].get<double>());
     EXPECT_GE(legs.back(), 0.85);
     EXPECT_LE(legs.back(), 1.15);
+    EXPECT_LE(std::abs(frame["build"]["floor_mm"].get<double>()), 300);
   }
   std::nth_element(legs.begin(), legs.begin() + legs.size() / 2, legs.end());
   std::nth_element(arms.begin(), arms.begin() + arms.size() / 2, arms.end());

@@ -1,6 +1,6 @@
 // The build's fit against oracles: on a cost whose minimum is known it goes there, and on
 // exact silhouettes of a walker of another build (the ray caster; other widths, shorter
-// legs, longer arms) it finds that build.
+// legs, longer arms, on a floor higher than the cameras have it) it finds that build.
 #include "tracker/filter/body_shape.h"
 
 #include <cmath>
@@ -31,11 +31,13 @@ TEST(BodyShapeTest, GoesToAQuadraticsMinimumRelativeToTheTorso) {
     double sum = 0;
     for (int r = 0; r < kNumBodyRegions; ++r) sum += weight[r] * std::pow(std::log(b.widths[r] / best.widths[r]), 2);
     return sum + 5 * std::pow(std::log(b.lengths.legs / best.lengths.legs), 2) +
-           std::pow(std::log(b.lengths.arms / best.lengths.arms), 2);
+           std::pow(std::log(b.lengths.arms / best.lengths.arms), 2) + 1e-4 * std::pow(b.floor_mm - best.floor_mm, 2);
   };
+  best.floor_mm = 45;
   BodyShape shape;
-  shape.Update(cost);
-  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2));
+  shape.Update(cost, true);
+  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2 + 1));
+  EXPECT_NEAR(shape.build().floor_mm, 0.1 * 20, 1e-9);  // a tenth of one probe (20 mm)
   // One update moves each scale a tenth of the way in the logarithm (the parabola of a
   // quadratic is exact, but a step is at most one probe); the torso stays.
   const auto first_step = [](double target, double probe) {
@@ -45,7 +47,13 @@ TEST(BodyShapeTest, GoesToAQuadraticsMinimumRelativeToTheTorso) {
     EXPECT_NEAR(std::log(shape.build().widths[r]), r == 0 ? 0 : first_step(best.widths[r], 0.1), 1e-9) << r;
   EXPECT_NEAR(std::log(shape.build().lengths.legs), first_step(0.93, 0.04), 1e-9);
   EXPECT_NEAR(std::log(shape.build().lengths.arms), first_step(1.06, 0.04), 1e-9);
-  for (int i = 0; i < 300; ++i) shape.Update(cost);
+  for (int i = 0; i < 300; ++i) shape.Update(cost, true);
+  EXPECT_NEAR(shape.build().floor_mm, 45, 1e-3);
+  // Seen by one camera only, the floor stays where it is.
+  calls = 0;
+  shape.Update([&](const Build& b) { return cost(b) + 1e-2 * b.floor_mm; });
+  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2));
+  EXPECT_NEAR(shape.build().floor_mm, 45, 1e-3);
   for (int r = 0; r < kNumBodyRegions; ++r) EXPECT_NEAR(shape.build().widths[r], best.widths[r], 1e-3) << r;
   EXPECT_NEAR(shape.build().lengths.legs, 0.93, 1e-3);
   EXPECT_NEAR(shape.build().lengths.arms, 1.06, 1e-3);
@@ -95,20 +103,22 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
   Build truth;
   truth.widths = {1.0, 0.9 / torso, 0.95 / torso, 1.25 / torso, 0.85 / torso};
   truth.lengths = {0.93, 1.06};
+  truth.floor_mm = 60;  // the floor higher than the cameras have it
   BodyModelOptions broad;
   broad.width_scale = torso;
   BodyModel walker(skeleton, broad, "35.asf");
   walker.SetRegionScales(truth.widths);
   const BodyModel body(skeleton, {}, "35.asf");
   const LimbScaler limbs(skeleton);
-  // The bone ends of frame f with the limbs in proportion (about the hips and shoulders).
-  const auto joints_of = [&](int f, const Proportions& lengths) {
+  // The bone ends of frame f with the limbs in proportion (about the hips and shoulders),
+  // raised by the floor.
+  const auto joints_of = [&](int f, const Build& b) {
     Eigen::Matrix3Xd joints = kinematics.Compute(motion.Frame(f));
     const Eigen::Vector3d root = joints.col(0);
     joints.colwise() -= root;
     double foot = 0;
-    limbs.Apply(lengths, &joints, &foot);
-    joints.colwise() += root;
+    limbs.Apply(b.lengths, &joints, &foot);
+    joints.colwise() += root + Eigen::Vector3d(0, b.floor_mm, 0);
     return joints;
   };
   const SilhouetteLikelihood likelihood(cameras);
@@ -120,17 +130,19 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
     std::vector<CameraObservation> observed;
     for (const Camera& camera : cameras) {
       BodyImage image;
-      RayCaster(camera).Render(walker.Place(joints_of(f, truth.lengths)), &image);
+      RayCaster(camera).Render(walker.Place(joints_of(f, truth)), &image);
       const cv::Mat mask = image.Mask();
       cv::Rect box = cv::boundingRect(mask);
       observed.push_back(likelihood.Observe(mask, cv::Rect(box.x - 20, box.y - 20, box.width + 40, box.height + 40)));
     }
-    shape.Update([&](const Build& b) {
-      body.Place(joints_of(f, b.lengths), torso, b.widths, &capsules);
-      std::vector<CameraScore> scores;
-      likelihood.Cost(capsules, observed, &workspace, &scores);
-      return ShapeCost(scores);
-    });
+    shape.Update(
+        [&](const Build& b) {
+          body.Place(joints_of(f, b), torso, b.widths, &capsules);
+          std::vector<CameraScore> scores;
+          likelihood.Cost(capsules, observed, &workspace, &scores);
+          return ShapeCost(scores);
+        },
+        true);
   }
   const Build& found = shape.build();
   for (int r = 0; r < kNumBodyRegions; ++r) {
@@ -142,6 +154,8 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
               found.lengths.legs, truth.lengths.arms, found.lengths.arms);
   EXPECT_NEAR(found.lengths.legs, truth.lengths.legs, 0.015);
   EXPECT_NEAR(found.lengths.arms, truth.lengths.arms, 0.02);
+  std::printf("floor   truth %.1f mm  found %.1f mm\n", truth.floor_mm, found.floor_mm);
+  EXPECT_NEAR(found.floor_mm, truth.floor_mm, 8);
 }
 
 }  // namespace
