@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/base/error.h"
+
 namespace jgpm {
 
 bool BodyShapeOptions::Check(std::string* why) const {
@@ -31,47 +33,60 @@ BodyShape::BodyShape(const BodyShapeOptions& options) : options_(options) {}
 void BodyShape::Reset() { build_ = Build(); }
 
 void BodyShape::Update(const std::function<double(const Build&)>& cost, bool several_views) {
+  Update(
+      [&cost](const std::vector<Build>& builds) {
+        std::vector<double> out;
+        for (const Build& b : builds) out.push_back(cost(b));
+        return out;
+      },
+      several_views);
+}
+
+void BodyShape::Update(const Costs& costs, bool several_views) {
   if (!options_.enabled || options_.rate == 0) return;
-  const double here = cost(build_);
-  if (!std::isfinite(here)) return;
-  // The step to the minimum of the parabola through (-h, down), (0, here), (h, up), at
-  // most h; h downhill when it has none.
-  const auto step = [&](double down, double up, double h) {
-    const double slope = (up - down) / (2 * h), curvature = (up + down - 2 * here) / (h * h);
-    return std::clamp(curvature > 0 ? -slope / curvature : (slope > 0 ? -h : slope < 0 ? h : 0), -h, h);
+  // Each scale fitted: how to move it in a build by a step in its own units (the scales'
+  // logarithm, the floor's millimetres), its probe and bounds.
+  struct Scale {
+    std::function<double&(Build&)> at;
+    bool logarithmic;
+    double probe, lo, hi;
   };
-  // A scale: where it is in a build, its probe and bounds; fitted in its logarithm.
-  const auto fit = [&](const Build& from, auto&& at, double probe, double lo, double hi, Build* to) {
-    const double h = std::log1p(probe);
-    Build larger = from, smaller = from;
-    at(larger) *= std::exp(h);
-    at(smaller) *= std::exp(-h);
-    const double up = cost(larger), down = cost(smaller);
-    if (!std::isfinite(up) || !std::isfinite(down)) return false;
-    at(*to) = std::clamp(at(*to) * std::exp(options_.rate * step(down, up, h)), lo, hi);
-    return true;
+  std::vector<Scale> scales;
+  for (int r = 1; r < kNumBodyRegions; ++r)  // the torso is the reference
+    scales.push_back({[r](Build& b) -> double& { return b.widths[r]; }, true, std::log1p(options_.width_probe),
+                      options_.min_width, options_.max_width});
+  if (options_.lengths) {
+    for (double Proportions::*limb : {&Proportions::legs, &Proportions::arms})
+      scales.push_back({[limb](Build& b) -> double& { return b.lengths.*limb; }, true,
+                        std::log1p(options_.length_probe), options_.min_length, options_.max_length});
+  }
+  if (several_views)
+    scales.push_back({[](Build& b) -> double& { return b.floor_mm; }, false, options_.floor_probe_mm,
+                      -options_.max_floor_mm, options_.max_floor_mm});
+  const auto moved = [](const Scale& s, Build b, double step) {
+    double& v = s.at(b);
+    v = s.logarithmic ? v * std::exp(step) : v + step;
+    return b;
   };
+  std::vector<Build> builds = {build_};
+  for (const Scale& s : scales) {
+    builds.push_back(moved(s, build_, s.probe));
+    builds.push_back(moved(s, build_, -s.probe));
+  }
+  const std::vector<double> cost = costs(builds);
+  JGPM_CHECK(cost.size() == builds.size());
+  for (double c : cost)
+    if (!std::isfinite(c)) return;
+  const double here = cost[0];
   Build next = build_;
-  for (int r = 1; r < kNumBodyRegions; ++r) {  // the torso is the reference
-    if (!fit(build_, [r](Build& b) -> double& { return b.widths[r]; }, options_.width_probe, options_.min_width,
-             options_.max_width, &next))
-      return;
-  }
-  for (double Proportions::*limb : {&Proportions::legs, &Proportions::arms}) {
-    if (!options_.lengths) break;
-    if (!fit(build_, [limb](Build& b) -> double& { return b.lengths.*limb; }, options_.length_probe,
-             options_.min_length, options_.max_length, &next))
-      return;
-  }
-  if (several_views) {
-    const double h = options_.floor_probe_mm;
-    Build higher = build_, lower = build_;
-    higher.floor_mm += h;
-    lower.floor_mm -= h;
-    const double up = cost(higher), down = cost(lower);
-    if (!std::isfinite(up) || !std::isfinite(down)) return;
-    next.floor_mm = std::clamp(build_.floor_mm + options_.rate * step(down, up, h), -options_.max_floor_mm,
-                               options_.max_floor_mm);
+  for (size_t k = 0; k < scales.size(); ++k) {
+    // The step to the minimum of the parabola through (-h, down), (0, here), (h, up), at
+    // most h; h downhill when it has none.
+    const double h = scales[k].probe, up = cost[1 + 2 * k], down = cost[2 + 2 * k];
+    const double slope = (up - down) / (2 * h), curvature = (up + down - 2 * here) / (h * h);
+    const double step = std::clamp(curvature > 0 ? -slope / curvature : (slope > 0 ? -h : slope < 0 ? h : 0), -h, h);
+    Build stepped = moved(scales[k], build_, options_.rate * step);
+    scales[k].at(next) = std::clamp(scales[k].at(stepped), scales[k].lo, scales[k].hi);
   }
   build_ = next;
 }

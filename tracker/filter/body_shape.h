@@ -73,10 +73,15 @@ class BodyShape {
   const Build& build() const { return build_; }
   // Back to the model's proportions and the average adult's widths (a new start).
   void Reset();
-  // One frame: `cost` is the frame's estimate's cost with this build. Calls it once, then
-  // twice per scale fitted (4 widths, 2 lengths unless known, the floor when
-  // `several_views`: two cameras or more see the person). Costs that are not finite leave
-  // the build as it is.
+  // The frame's estimate's cost with each of the builds given (in any order; e.g. in
+  // parallel).
+  using Costs = std::function<std::vector<double>(const std::vector<Build>& builds)>;
+  // One frame: asks the costs of the build as it is and of it with each scale fitted
+  // larger and smaller (4 widths, 2 lengths unless known, the floor when `several_views`:
+  // two cameras or more see the person), once. Costs that are not finite leave the build
+  // as it is.
+  void Update(const Costs& costs, bool several_views = false);
+  // The same, one build at a time.
   void Update(const std::function<double(const Build&)>& cost, bool several_views = false);
 
  private:

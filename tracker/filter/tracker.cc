@@ -377,31 +377,32 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   {
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
     std::vector<Capsule> capsules;
-    Eigen::Matrix3Xd joints;
-    // The estimate drawn with a build (its pose, place, heading and size), scored.
-    const auto score = [&](const Build& build, std::vector<CameraScore>* scores) {
-      const Eigen::Matrix3Xd* drawn = &out.joints_mm;
-      if (!(build.lengths == out.build.lengths) || build.floor_mm != out.build.floor_mm) {
-        placer_.SetProportions(build.lengths);
-        placer_.SetFloor(build.floor_mm);
-        placer_.Place(out.pose_deg.data(), out.joints_mm(0, 0), out.joints_mm(2, 0), out.heading_rad, out.size, &joints);
-        placer_.SetProportions(out.build.lengths);
-        placer_.SetFloor(out.build.floor_mm);
-        drawn = &joints;
-      }
-      body_.Place(*drawn, out.size * out.width, build.widths, &capsules);
-      likelihood_.Cost(capsules, observations, &workspace, scores);
-    };
-    score(out.build, &out.cameras);
+    body_.Place(out.joints_mm, out.size * out.width, out.build.widths, &capsules);
+    likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
     if (out.MeanIou() >= options_.lost_iou) {
       if (alignment_.active()) AlignViews(capsules, observations, out);
       int views = 0;  // cameras that see the person and draw them
       for (const CameraScore& c : out.cameras) views += c.observed_px > 0 && c.model_px > 0;
-      std::vector<CameraScore> scores;
+      // The estimate (its pose, place, heading and size) drawn with each build, scored on
+      // the pool's threads.
+      std::vector<SilhouetteLikelihood::Workspace> workspaces;
+      for (int w = 0; w < pool_.size(); ++w) workspaces.push_back(likelihood_.NewWorkspace());
       shape_.Update(
-          [&](const Build& build) {
-            score(build, &scores);
-            return ShapeCost(scores);
+          [&](const std::vector<Build>& builds) {
+            std::vector<double> costs(builds.size());
+            pool_.For(static_cast<int>(builds.size()), [&](int begin, int end, int worker) {
+              Eigen::Matrix3Xd joints;
+              std::vector<Capsule> drawn;
+              std::vector<CameraScore> scores;
+              for (int i = begin; i < end; ++i) {
+                placer_.Place(out.pose_deg.data(), out.joints_mm(0, 0), out.joints_mm(2, 0), out.heading_rad,
+                              out.size, builds[i].lengths, builds[i].floor_mm, &joints);
+                body_.Place(joints, out.size * out.width, builds[i].widths, &drawn);
+                likelihood_.Cost(drawn, observations, &workspaces[worker], &scores);
+                costs[i] = ShapeCost(scores);
+              }
+            });
+            return costs;
           },
           views >= 2);
       ApplyBuild();

@@ -22,6 +22,11 @@ PosePlacer::PosePlacer(const Skeleton& skeleton)
 }
 
 void PosePlacer::Relative(const double* pose, Eigen::Matrix3Xd* relative, double* foot_height_mm) const {
+  Relative(pose, proportions_, relative, foot_height_mm);
+}
+
+void PosePlacer::Relative(const double* pose, const Proportions& proportions, Eigen::Matrix3Xd* relative,
+                          double* foot_height_mm) const {
   thread_local std::vector<double> frame;
   frame.resize(kinematics_.NumChannels());
   layout_.ToFrame(pose, frame.data());
@@ -31,15 +36,20 @@ void PosePlacer::Relative(const double* pose, Eigen::Matrix3Xd* relative, double
   double foot = 1e300;
   for (int b : feet_) foot = std::min(foot, (*relative)(1, b));
   *foot_height_mm = foot;
-  limbs_.Apply(proportions_, relative, foot_height_mm);
+  limbs_.Apply(proportions, relative, foot_height_mm);
 }
 
 void PosePlacer::Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
                        Eigen::Matrix3Xd* world) const {
+  Place(pose, x_mm, z_mm, heading_rad, size, proportions_, floor_mm_, world);
+}
+
+void PosePlacer::Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
+                       const Proportions& proportions, double floor_mm, Eigen::Matrix3Xd* world) const {
   thread_local Eigen::Matrix3Xd relative;
   double foot = 0;
-  Relative(pose, &relative, &foot);
-  PlaceInWorld(relative, foot, x_mm, z_mm, heading_rad, size, kFootClearanceMm + floor_mm_, world);
+  Relative(pose, proportions, &relative, &foot);
+  PlaceInWorld(relative, foot, x_mm, z_mm, heading_rad, size, kFootClearanceMm + floor_mm, world);
 }
 
 void PlaceInWorld(const Eigen::Matrix3Xd& relative, double foot_height_mm, double x_mm, double z_mm,

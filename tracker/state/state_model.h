@@ -131,6 +131,11 @@ class PosePlacer {
   // Placed as PlaceInWorld places them.
   void Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
              Eigen::Matrix3Xd* world) const;
+  // The same with other proportions and floor than the ones set (thread-safe).
+  void Relative(const double* pose, const Proportions& proportions, Eigen::Matrix3Xd* relative,
+                double* foot_height_mm) const;
+  void Place(const double* pose, double x_mm, double z_mm, double heading_rad, double size,
+             const Proportions& proportions, double floor_mm, Eigen::Matrix3Xd* world) const;
 
  private:
   GaitPoseLayout layout_;
