@@ -4,8 +4,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
-#include <string_view>
 
 #include <opencv2/imgproc.hpp>
 
@@ -57,11 +57,12 @@ std::string ScaledAsf(const std::string& asf, double length_scale, double size) 
 
 // The ASF text with each limb bone's `length` times the proportion (tracker/state/proportions.h).
 std::string ProportionedAsf(std::string asf, const Proportions& proportions) {
+  static const char* const kLimbs[] = {"femur", "tibia", "foot", "toes",                         // legs
+                                       "humerus", "radius", "wrist", "hand", "fingers", "thumb"};  // arms
   for (const char* side : {"l", "r"}) {
-    for (const char* limb : {"femur", "tibia", "foot", "toes", "humerus", "radius", "wrist", "hand", "fingers", "thumb"}) {
-      const bool leg = std::string_view(limb) == "femur" || std::string_view(limb) == "tibia" ||
-                       std::string_view(limb) == "foot" || std::string_view(limb) == "toes";
-      const std::string name = std::string("name ") + side + limb;
+    for (int k = 0; k < 10; ++k) {
+      const bool leg = k < 4;
+      const std::string name = std::string("name ") + side + kLimbs[k];
       size_t block = asf.find(name);
       while (block != std::string::npos && block + name.size() < asf.size() && !std::isspace(asf[block + name.size()]))
         block = asf.find(name, block + 1);
