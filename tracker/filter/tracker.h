@@ -149,7 +149,6 @@ class Tracker {
   const TrackerOptions& options() const { return options_; }
   const AnnealedFilter& filter() const { return *filter_; }
   const ViewAlignment& alignment() const { return alignment_; }
-  const BodyShape& shape() const { return shape_; }
 
   // Starts from a known guess (e.g. `--init truth`) at the next frame; `frame` (the first
   // frame tracked from it) keys the particles' random numbers, so that each restart draws

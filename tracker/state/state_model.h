@@ -86,11 +86,9 @@ class StateModel {
   // The person's limb lengths (proportions.h), applied by Evaluate: set between frames
   // (not while particles are evaluated).
   virtual void SetProportions(const Proportions& proportions) { proportions_ = proportions; }
-  const Proportions& proportions() const { return proportions_; }
   // The floor's height under the person (mm; 0: the world's y = 0): a ramp, or a floor
   // the calibration puts a little off. Set between frames, like the proportions.
   virtual void SetFloor(double floor_mm) { floor_mm_ = floor_mm; }
-  double floor_mm() const { return floor_mm_; }
 
  protected:
   Proportions proportions_;
