@@ -1,0 +1,301 @@
+#include "calibration/walker_calibration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <ceres/ceres.h>
+
+#include "io/base/error.h"
+
+namespace jgpm {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// The camera's parameters as Ceres sees them: log focal (px), tilt down (rad), roll (rad),
+// log height (mm). Logs keep the focal length and height positive and make their steps
+// relative.
+enum { kLogFocal, kTilt, kRoll, kLogHeight, kCameraParameters };
+
+// One head-foot pair in "ideal" pixels: offsets from the principal point, undistorted, so
+// that (q / f, 1) is the ray in the camera's frame.
+struct Pair {
+  Eigen::Vector2d head, foot;
+  double sd_within_mm = 0, sd_line_px = 0;
+};
+
+// Where the head pixel's ray passes the vertical line above the foot's floor point: the
+// height there (mm) and the sideways miss (px at the head's depth). False when the foot's
+// ray does not go down to the floor or the head is not in front of the camera.
+//
+// The camera sits at C = (0, h, 0) with cam_from_world R = Rz(roll) R0(tilt), R0's rows
+// the camera's right, down and forward axes in the world (right = -x, forward
+// (0, -sin tilt, cos tilt)): LookAtCamera's camera, rolled about its axis.
+template <typename T>
+bool HeadOnVertical(const T* camera, const Pair& pair, T* head_height, T* miss_px) {
+  using std::cos, std::exp, std::sin, std::sqrt;
+  const T f = exp(camera[kLogFocal]);
+  const T ct = cos(camera[kTilt]), st = sin(camera[kTilt]);
+  const T cr = cos(camera[kRoll]), sr = sin(camera[kRoll]);
+  const T h = exp(camera[kLogHeight]);
+  // World direction R^T (q / f, 1) = R0^T Rz^T d; R0 is symmetric.
+  auto ray = [&](const Eigen::Vector2d& q, T* w) {
+    const T dx = T(q.x()) / f, dy = T(q.y()) / f;
+    const T ex = cr * dx + sr * dy, ey = -sr * dx + cr * dy, ez = T(1);
+    w[0] = -ex;
+    w[1] = -ct * ey - st * ez;
+    w[2] = -st * ey + ct * ez;
+  };
+  T d[3], g[3];
+  ray(pair.foot, d);
+  ray(pair.head, g);
+  if (!(d[1] < T(-1e-9))) return false;  // the foot's ray never meets the floor
+  // Foot on the floor: C + s d with y = 0. w = C - F.
+  const T s = h / -d[1];
+  const T wx = -s * d[0], wz = -s * d[2];
+  // Closest approach of C + t g to the vertical through F: horizontal geometry only.
+  const T gh2 = g[0] * g[0] + g[2] * g[2];
+  if (!(gh2 > T(1e-18))) return false;
+  const T t = -(g[0] * wx + g[2] * wz) / gh2;  // t is also the depth: g's camera z is 1
+  if (!(t > T(1e-6))) return false;
+  *head_height = h + t * g[1];
+  const T mx = wx + t * g[0], mz = wz + t * g[2];
+  *miss_px = (g[0] * mz - g[2] * mx) / sqrt(gh2) * f / t;
+  return true;
+}
+
+struct PairCost {
+  Pair pair;
+  template <typename T>
+  bool operator()(const T* camera, const T* walker_height, T* residual) const {
+    T height, miss;
+    if (!HeadOnVertical(camera, pair, &height, &miss)) return false;
+    residual[0] = (height - walker_height[0]) / pair.sd_within_mm;
+    residual[1] = miss / pair.sd_line_px;
+    return true;
+  }
+};
+
+struct HeightPrior {
+  double mean, sd;
+  template <typename T>
+  bool operator()(const T* walker_height, T* residual) const {
+    residual[0] = (walker_height[0] - mean) / sd;
+    return true;
+  }
+};
+
+std::string Fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+}  // namespace
+
+CameraAngles AnglesOf(const Camera& camera) {
+  const Eigen::Matrix3d& r = camera.cam_from_world_rotation;
+  const Eigen::Vector3d up_in_camera = r.col(1);
+  CameraAngles angles;
+  angles.tilt_deg = std::asin(std::clamp(-r(2, 1), -1.0, 1.0)) / kDeg;
+  angles.roll_deg = std::atan2(up_in_camera.x(), -up_in_camera.y()) / kDeg;
+  angles.height_mm = camera.CentreInWorld().y();
+  return angles;
+}
+
+WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int width, int height,
+                                       const WalkerCalibrationOptions& options) {
+  const std::string where = "calibration from walkers";
+  if (width <= 0 || height <= 0) ThrowInputError(where, "the image size must be positive");
+  if (static_cast<int>(points.size()) < options.min_points) {
+    ThrowInputError(where, "need at least " + std::to_string(options.min_points) +
+                               " head-foot points of people wholly in view, got " + std::to_string(points.size()) +
+                               " (a longer video, or walkers who stay clear of the image's edges)");
+  }
+  // Ideal pixels, and the person's height in them for the noise model.
+  const Camera reference = LookAtCamera("cam0", width, height, 1, Eigen::Vector3d(0, 1000, 0),
+                                        Eigen::Vector3d(0, 1000, 1000));
+  const bool fixed_focal = options.intrinsics.has_value();
+  Camera intrinsics = fixed_focal ? *options.intrinsics : reference;
+  intrinsics.cam_from_world_rotation.setIdentity();
+  intrinsics.cam_from_world_translation_mm.setZero();
+  if (fixed_focal && (intrinsics.width != width || intrinsics.height != height)) {
+    ThrowInputError(where, "the camera's intrinsics are for " + std::to_string(intrinsics.width) + "x" +
+                               std::to_string(intrinsics.height) + " images, the video's are " +
+                               std::to_string(width) + "x" + std::to_string(height));
+  }
+  auto ideal = [&](const Eigen::Vector2d& pixel) -> Eigen::Vector2d {
+    if (!fixed_focal) return pixel - Eigen::Vector2d(intrinsics.cx, intrinsics.cy);
+    // Undistorted through the user's lens, in units of fx.
+    const Eigen::Vector3d ray = intrinsics.PixelRaysInWorld(pixel).col(0);
+    return ray.head<2>() / ray.z() * intrinsics.fx;
+  };
+  std::map<int, int> walker_index;
+  std::vector<Pair> pairs;
+  std::vector<int> pair_walker;
+  for (const HeadFoot& point : points) {
+    if (!point.head_px.allFinite() || !point.foot_px.allFinite()) ThrowInputError(where, "a point is not finite");
+    Pair pair{ideal(point.head_px), ideal(point.foot_px)};
+    const double person_px = (pair.foot - pair.head).norm();
+    if (!(person_px > 4)) ThrowInputError(where, "a head and foot point less than 4 px apart");
+    pair.sd_within_mm = std::hypot(options.within_sd_mm, options.edge_sd_px * options.person_height_mm / person_px);
+    pair.sd_line_px = options.line_sd * person_px;
+    pairs.push_back(pair);
+    pair_walker.push_back(walker_index.emplace(point.walker, walker_index.size()).first->second);
+  }
+  const int walkers = static_cast<int>(walker_index.size());
+
+  double camera[kCameraParameters] = {0, 0, 0, 0};
+  std::vector<double> heights(walkers, options.person_height_mm);
+  ceres::Problem problem;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, 1>(new PairCost{pairs[i]}),
+                             new ceres::HuberLoss(2.0), camera, &heights[pair_walker[i]]);
+  }
+  for (double& walker_height : heights) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<HeightPrior, 1, 1>(
+                                 new HeightPrior{options.person_height_mm, options.person_height_sd_mm}),
+                             nullptr, &walker_height);
+  }
+  if (fixed_focal) problem.SetManifold(camera, new ceres::SubsetManifold(kCameraParameters, {kLogFocal}));
+
+  // Starts: a grid of fields of view and tilts (roll 0), each with the height that makes
+  // the median walker person-height tall (heights scale with the camera's); the best few
+  // by their starting cost are solved.
+  struct Start {
+    double cost;
+    double camera[kCameraParameters];
+  };
+  std::vector<Start> starts;
+  const std::vector<double> fovs = fixed_focal ? std::vector<double>{0} : std::vector<double>{30, 45, 60, 75, 90, 110};
+  for (double fov : fovs) {
+    for (double tilt : {-5.0, 5.0, 15.0, 25.0, 35.0, 50.0, 65.0}) {
+      Start start;
+      start.camera[kLogFocal] =
+          fixed_focal ? std::log(intrinsics.fx) : std::log(width / 2.0 / std::tan(fov * kDeg / 2));
+      start.camera[kTilt] = tilt * kDeg;
+      start.camera[kRoll] = 0;
+      start.camera[kLogHeight] = 0;
+      std::vector<double> unit_heights;
+      bool valid = true;
+      for (const Pair& pair : pairs) {
+        double head_height, miss;
+        valid = valid && HeadOnVertical(start.camera, pair, &head_height, &miss) && head_height > 0;
+        if (!valid) break;
+        unit_heights.push_back(head_height);
+      }
+      if (!valid) continue;
+      std::nth_element(unit_heights.begin(), unit_heights.begin() + unit_heights.size() / 2, unit_heights.end());
+      start.camera[kLogHeight] = std::log(options.person_height_mm / unit_heights[unit_heights.size() / 2]);
+      std::copy(start.camera, start.camera + kCameraParameters, camera);
+      std::fill(heights.begin(), heights.end(), options.person_height_mm);
+      if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &start.cost, nullptr, nullptr, nullptr)) continue;
+      starts.push_back(start);
+    }
+  }
+  if (starts.empty()) {
+    ThrowInputError(where, "no camera looking down at a floor puts every foot point below its horizon: are these "
+                           "upright people on one floor, and the image the right way up?");
+  }
+  std::sort(starts.begin(), starts.end(), [](const Start& a, const Start& b) { return a.cost < b.cost; });
+  starts.resize(std::min<size_t>(starts.size(), 5));
+
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 200;
+  solver.logging_type = ceres::SILENT;
+  double best_cost = HUGE_VAL;
+  std::vector<double> best_heights;
+  double best_camera[kCameraParameters];
+  for (const Start& start : starts) {
+    std::copy(start.camera, start.camera + kCameraParameters, camera);
+    std::fill(heights.begin(), heights.end(), options.person_height_mm);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    if (summary.IsSolutionUsable() && summary.final_cost < best_cost) {
+      best_cost = summary.final_cost;
+      std::copy(camera, camera + kCameraParameters, best_camera);
+      best_heights = heights;
+    }
+  }
+  if (!std::isfinite(best_cost)) ThrowInputError(where, "the fit did not converge from any start");
+  std::copy(best_camera, best_camera + kCameraParameters, camera);
+  heights = best_heights;
+
+  // Uncertainty: the covariance at the minimum (singular: a direction the walkers leave
+  // free), scaled by the residuals' spread when it exceeds the noise stated above.
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::DENSE_SVD;
+  covariance_options.null_space_rank = 0;
+  ceres::Covariance covariance(covariance_options);
+  const std::vector<std::pair<const double*, const double*>> blocks = {{camera, camera}};
+  double c[kCameraParameters * kCameraParameters];
+  if (!covariance.Compute(blocks, &problem) || !covariance.GetCovarianceBlock(camera, camera, c)) {
+    ThrowInputError(where, "the walkers do not determine the camera (the fit's covariance is singular): walkers "
+                           "nearer to and farther from the camera, or in more of the image, would");
+  }
+  const int residuals = problem.NumResiduals();
+  const int parameters = (fixed_focal ? 3 : 4) + walkers;
+  const double spread = residuals > parameters ? 2 * best_cost / (residuals - parameters) : 1;
+  const double scale = std::max(1.0, spread);
+  auto sd = [&](int i) { return std::sqrt(std::max(0.0, c[i * kCameraParameters + i] * scale)); };
+
+  WalkerCalibration result;
+  result.points = static_cast<int>(pairs.size());
+  result.walkers = walkers;
+  const double focal = std::exp(camera[kLogFocal]);
+  const double camera_height = std::exp(camera[kLogHeight]);
+  result.focal_px = {fixed_focal ? intrinsics.fx : focal, fixed_focal ? 0 : focal * sd(kLogFocal)};
+  result.height_mm = {camera_height, camera_height * sd(kLogHeight)};
+  result.tilt_deg = {camera[kTilt] / kDeg, sd(kTilt) / kDeg};
+  result.roll_deg = {camera[kRoll] / kDeg, sd(kRoll) / kDeg};
+  result.walker_heights_mm = heights;
+  double line2 = 0, height2 = 0;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    double head_height = 0, miss = 0;
+    HeadOnVertical(camera, pairs[i], &head_height, &miss);
+    line2 += miss * miss;
+    height2 += std::pow(head_height - heights[pair_walker[i]], 2);
+  }
+  result.rms_line_px = std::sqrt(line2 / pairs.size());
+  result.rms_height_mm = std::sqrt(height2 / pairs.size());
+
+  auto refuse = [&](const std::string& name, const std::string& value) {
+    ThrowInputError(where, "the walkers do not determine the " + name + " (" + value +
+                               "): walkers nearer to and farther from the camera, more of them, or a longer video "
+                               "would; or give the camera's intrinsics (--camera)");
+  };
+  if (!fixed_focal && result.focal_px.sd > options.max_relative_sd * focal) {
+    refuse("focal length", Fixed(focal, 0) + " +- " + Fixed(result.focal_px.sd, 0) + " px");
+  }
+  if (result.height_mm.sd > options.max_relative_sd * camera_height) {
+    refuse("camera's height", Fixed(camera_height, 0) + " +- " + Fixed(result.height_mm.sd, 0) + " mm");
+  }
+  if (result.tilt_deg.sd > options.max_angle_sd_deg) {
+    refuse("tilt", Fixed(result.tilt_deg.value, 1) + " +- " + Fixed(result.tilt_deg.sd, 1) + " degrees");
+  }
+  if (result.roll_deg.sd > options.max_angle_sd_deg) {
+    refuse("roll", Fixed(result.roll_deg.value, 1) + " +- " + Fixed(result.roll_deg.sd, 1) + " degrees");
+  }
+
+  // The camera: LookAtCamera's above the origin, rolled about its axis.
+  const double tilt = camera[kTilt];
+  const Eigen::Vector3d centre(0, camera_height, 0);
+  Camera placed = LookAtCamera("cam0", width, height, focal, centre,
+                               centre + Eigen::Vector3d(0, -std::sin(tilt), std::cos(tilt)) * 1000);
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(camera[kRoll], Eigen::Vector3d::UnitZ()).toRotationMatrix() * placed.cam_from_world_rotation;
+  if (fixed_focal) placed = intrinsics;
+  placed.name = "cam0";
+  placed.cam_from_world_rotation = rotation;
+  placed.cam_from_world_translation_mm = -rotation * centre;
+  result.camera = placed;
+  return result;
+}
+
+}  // namespace jgpm

@@ -1,0 +1,98 @@
+// A static camera calibrated from the people who walk past it (`jgpm calibrate --walkers`),
+// without a chessboard: its focal length, its height above the floor, its tilt and roll.
+//
+// The evidence is a head point and a foot point per walker per frame (the silhouette's top
+// and the middle of its bottom; tracker/frames/walker_points.h finds them). Every person
+// stands upright on one floor, so each pair is a vertical segment from the floor: the foot
+// pixel's ray meets the floor at F, and the head pixel's ray must pass through the vertical
+// line above F (the head-foot lines meet at the vertical vanishing point) at the walker's
+// height. Walkers seen at several distances fix the horizon and the focal length (Lv, Zhao
+// and Nevatia, "Camera calibration from video of a walking human", PAMI 2006); the scale,
+// the camera's height, comes only from how tall people are, so each walker's height is a
+// parameter under a prior of adult stature (Krahnstoever and Mendonca, "Bayesian autocalibration
+// for surveillance", ICCV 2005). The fit is Ceres least squares over
+//   per frame:  (height of the head on F's vertical - H_walker) / sd_within
+//               (head ray's miss of that vertical, px) / sd_line
+//   per walker: (H_walker - person_height) / person_height_sd
+// with a Huber loss on the frames (a blob that merged with a shadow or a bag), and each
+// parameter's uncertainty from the fit's covariance at the minimum, scaled up by the
+// residuals' spread when they are wider than the stated noise.
+//
+// The camera found is placed in a world of its own: above the world origin, looking along
+// +z (yaw and the position on the floor are not observable from one camera); y up, floor
+// y = 0, mm, as everywhere. Principal point at the image centre and no lens distortion,
+// unless the user's intrinsics (a chessboard calibration) are given: then they are kept and
+// only the height, tilt and roll are fitted.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calibration/camera.h"
+
+namespace jgpm {
+
+// One walker in one frame, pixels.
+struct HeadFoot {
+  Eigen::Vector2d head_px = Eigen::Vector2d::Zero();  // top of the head
+  Eigen::Vector2d foot_px = Eigen::Vector2d::Zero();  // on the floor, between the feet
+  int walker = 0;                                     // same number: same person
+};
+
+struct WalkerCalibrationOptions {
+  // Adult stature (top of the head above the floor): a mixed population's mean and spread
+  // (about 1.75 m for men and 1.62 m for women, each with a 70 mm spread).
+  double person_height_mm = 1700;
+  double person_height_sd_mm = 90;
+  // One walker's head above the floor from frame to frame: the gait's bob (about +-25 mm)
+  // plus the silhouette's edges at the top and bottom, each known to about a pixel; at a
+  // person height of P pixels the latter is P/1700 px per mm, so
+  //   sd_within = hypot(within_sd_mm, 1.5 px * person_height_mm / P).
+  double within_sd_mm = 25;
+  double edge_sd_px = 1.5;
+  // The head's sideways miss of the foot's vertical, as a share of the person's height in
+  // pixels: arms and a swinging leg move the blob's top and bottom middles apart.
+  double line_sd = 0.03;
+  // The user's calibration: its intrinsics and distortion are kept (only the pose fitted).
+  std::optional<Camera> intrinsics;
+  // Refused (InputError) when the walkers do not determine a parameter better than this
+  // (one standard deviation): the focal length and height relative, the angles in degrees.
+  double max_relative_sd = 0.10;
+  double max_angle_sd_deg = 3;
+  int min_points = 20;
+};
+
+struct Estimate {
+  double value = 0;
+  double sd = 0;  // one standard deviation
+};
+
+struct WalkerCalibration {
+  Camera camera;  // placed as above, named "cam0"
+  Estimate focal_px, height_mm, tilt_deg, roll_deg;
+  int points = 0, walkers = 0;
+  double rms_line_px = 0;       // the head rays' sideways miss, px
+  double rms_height_mm = 0;     // heads around their walker's height, mm
+  std::vector<double> walker_heights_mm;  // each walker's height found, in walker order
+};
+
+// The camera from head-foot pairs seen in an image of `width` x `height` pixels. Walker
+// numbers may be any integers. InputError, in one line, when there are too few pairs, when
+// the pairs cannot be a person on a floor (foot points above the horizon of every
+// plausible camera), or when a parameter is not determined (the message names it, its
+// uncertainty, and what would help: walkers nearer and farther from the camera).
+WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int width, int height,
+                                       const WalkerCalibrationOptions& options = {});
+
+// The same four numbers read off any placed camera (for comparing with a calibration):
+// tilt down from level, and roll, in the convention of CalibrateFromWalkers; the height
+// is the centre's y.
+struct CameraAngles {
+  double tilt_deg = 0, roll_deg = 0, height_mm = 0;
+};
+CameraAngles AnglesOf(const Camera& camera);
+
+}  // namespace jgpm

@@ -1,0 +1,71 @@
+// Head and foot points from masks drawn with known shapes: upright ellipses (walkers) whose
+// top and bottom are known to the pixel, moving across the image; a wide blob (a car), a
+// blob cut by the image's edge and a walker seen for a moment, which must not count.
+#include "tracker/frames/walker_points.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+namespace jgpm {
+namespace {
+
+// An upright ellipse centred at (x, y) with half-axes (a, b): rows y-b .. y+b.
+void Draw(cv::Mat* mask, double x, double y, int a, int b) {
+  cv::ellipse(*mask, cv::Point(static_cast<int>(x), static_cast<int>(y)), cv::Size(a, b), 0, 0, 360, 255, cv::FILLED);
+}
+
+TEST(WalkerPointFinder, FindsEachWalkersHeadAndFeetAndKeepsTheirIdentity) {
+  WalkerPointFinder finder(320, 240);
+  for (int frame = 0; frame < 30; ++frame) {
+    cv::Mat mask(240, 320, CV_8UC1, cv::Scalar(0));
+    Draw(&mask, 40 + 3 * frame, 100, 10, 40);    // walker A: rows 60..140, moving right
+    Draw(&mask, 280 - 2 * frame, 160, 8, 30);    // walker B: rows 130..190, moving left
+    Draw(&mask, 160, 215, 40, 10);               // a car: wider than tall
+    Draw(&mask, 2, 100, 10, 40);                 // cut by the left edge
+    if (frame < 3) Draw(&mask, 200, 60, 5, 20);  // seen for a moment
+    finder.Add(mask);
+  }
+  const std::vector<HeadFoot> points = finder.Points();
+  ASSERT_EQ(points.size(), 60u);
+  int a = 0, b = 0;
+  for (const HeadFoot& point : points) {
+    ASSERT_TRUE(point.walker == 0 || point.walker == 1);
+    const bool is_a = point.head_px.y() < 100;
+    const int walker_a = points[0].head_px.y() < 100 ? points[0].walker : 1 - points[0].walker;
+    EXPECT_EQ(point.walker == walker_a, is_a);
+    // The drawn extremes: top row y - b, bottom row y + b; edges half a pixel out.
+    if (is_a) {
+      ++a;
+      EXPECT_NEAR(point.head_px.y(), 59.5, 1.0);
+      EXPECT_NEAR(point.foot_px.y(), 140.5, 1.0);
+    } else {
+      ++b;
+      EXPECT_NEAR(point.head_px.y(), 129.5, 1.0);
+      EXPECT_NEAR(point.foot_px.y(), 190.5, 1.0);
+    }
+    EXPECT_NEAR(point.head_px.x(), point.foot_px.x(), 1.0);  // upright
+  }
+  EXPECT_EQ(a, 30);
+  EXPECT_EQ(b, 30);
+  // Walker A's column follows its centre.
+  EXPECT_NEAR(points[0].head_px.x() + points[1].head_px.x(), 40 + 280, 2.0);
+  EXPECT_EQ(finder.frames(), 30);
+}
+
+TEST(WalkerPointFinder, AWalkerHiddenTooLongComesBackAsAnother) {
+  WalkerPointOptions options;
+  options.min_frames = 1;
+  WalkerPointFinder finder(320, 240, options);
+  for (int frame = 0; frame < 20; ++frame) {
+    cv::Mat mask(240, 320, CV_8UC1, cv::Scalar(0));
+    if (frame < 5 || frame >= 5 + options.max_gap_frames + 1) Draw(&mask, 100 + frame, 120, 10, 40);
+    finder.Add(mask);
+  }
+  const auto points = finder.Points();
+  ASSERT_FALSE(points.empty());
+  EXPECT_EQ(points.front().walker, 0);
+  EXPECT_EQ(points.back().walker, 1);
+}
+
+}  // namespace
+}  // namespace jgpm
