@@ -16,28 +16,34 @@ namespace jgpm {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
+constexpr double kMaxRollDeg = 30;
 
 // The camera's parameters as Ceres sees them: log focal (px), tilt down (rad), roll (rad),
 // log height (mm). Logs keep the focal length and height positive and make their steps
 // relative.
 enum { kLogFocal, kTilt, kRoll, kLogHeight, kCameraParameters };
+// Each walker's: height (mm) and lean (mm: the head's sideways offset from the feet's
+// vertical, as seen from the camera).
+enum { kWalkerHeight, kWalkerLean, kWalkerParameters };
 
 // One head-foot pair in "ideal" pixels: offsets from the principal point, undistorted, so
 // that (q / f, 1) is the ray in the camera's frame.
 struct Pair {
   Eigen::Vector2d head, foot;
-  double sd_within_mm = 0, sd_line_px = 0;
+  double sd_within_mm = 0, sd_line_mm = 0;
 };
 
-// Where the head pixel's ray passes the vertical line above the foot's floor point: the
-// height there (mm) and the sideways miss (px at the head's depth). False when the foot's
-// ray does not go down to the floor or the head is not in front of the camera.
+// Where the head pixel's ray passes the person's vertical, the vertical line through the
+// point where the foot pixel's ray falls to `foot_mm` above the floor: the height there
+// (mm), the sideways miss (mm) and the head's depth (mm). False when the foot's ray does
+// not go down to that height or the head is not in front of the camera.
 //
 // The camera sits at C = (0, h, 0) with cam_from_world R = Rz(roll) R0(tilt), R0's rows
 // the camera's right, down and forward axes in the world (right = -x, forward
 // (0, -sin tilt, cos tilt)): LookAtCamera's camera, rolled about its axis.
 template <typename T>
-bool HeadOnVertical(const T* camera, const Pair& pair, T* head_height, T* miss_px) {
+bool HeadOnVertical(const T* camera, const Pair& pair, double head_radius_mm, const T& foot_mm, T* head_height,
+                    T* miss_mm, T* depth_mm) {
   using std::cos, std::exp, std::sin, std::sqrt;
   const T f = exp(camera[kLogFocal]);
   const T ct = cos(camera[kTilt]), st = sin(camera[kTilt]);
@@ -55,37 +61,47 @@ bool HeadOnVertical(const T* camera, const Pair& pair, T* head_height, T* miss_p
   ray(pair.foot, d);
   ray(pair.head, g);
   if (!(d[1] < T(-1e-9))) return false;  // the foot's ray never meets the floor
-  // Foot on the floor: C + s d with y = 0. w = C - F.
-  const T s = h / -d[1];
+  // The foot point: C + s d at height foot_mm. w = C - F, horizontally.
+  const T s = (h - foot_mm) / -d[1];
+  if (!(s > T(0))) return false;
   const T wx = -s * d[0], wz = -s * d[2];
   // Closest approach of C + t g to the vertical through F: horizontal geometry only.
   const T gh2 = g[0] * g[0] + g[2] * g[2];
   if (!(gh2 > T(1e-18))) return false;
   const T t = -(g[0] * wx + g[2] * wz) / gh2;  // t is also the depth: g's camera z is 1
   if (!(t > T(1e-6))) return false;
-  *head_height = h + t * g[1];
+  // Seen from above, the silhouette's top is the ray grazing the far side of a round head
+  // (radius r, centre H - r), which meets the vertical at H - r + r / cos(depression):
+  // the head's height is that, less the excess.
+  const T cos_depression = sqrt(gh2 / (gh2 + g[1] * g[1]));
+  *head_height = h + t * g[1] - T(head_radius_mm) * (T(1) / cos_depression - T(1));
   const T mx = wx + t * g[0], mz = wz + t * g[2];
-  *miss_px = (g[0] * mz - g[2] * mx) / sqrt(gh2) * f / t;
+  *miss_mm = (g[0] * mz - g[2] * mx) / sqrt(gh2);
+  *depth_mm = t;
   return true;
 }
 
 struct PairCost {
   Pair pair;
+  double head_radius_mm;
+  double foot_share;
   template <typename T>
-  bool operator()(const T* camera, const T* walker_height, T* residual) const {
-    T height, miss;
-    if (!HeadOnVertical(camera, pair, &height, &miss)) return false;
-    residual[0] = (height - walker_height[0]) / pair.sd_within_mm;
-    residual[1] = miss / pair.sd_line_px;
+  bool operator()(const T* camera, const T* walker, T* residual) const {
+    T height, miss, depth;
+    if (!HeadOnVertical(camera, pair, head_radius_mm, walker[kWalkerHeight] * foot_share, &height, &miss, &depth))
+      return false;
+    residual[0] = (height - walker[kWalkerHeight]) / pair.sd_within_mm;
+    residual[1] = (miss - walker[kWalkerLean]) / pair.sd_line_mm;
     return true;
   }
 };
 
-struct HeightPrior {
-  double mean, sd;
+struct WalkerPrior {
+  double height_mm, height_sd_mm, lean_sd_mm;
   template <typename T>
-  bool operator()(const T* walker_height, T* residual) const {
-    residual[0] = (walker_height[0] - mean) / sd;
+  bool operator()(const T* walker, T* residual) const {
+    residual[0] = (walker[kWalkerHeight] - height_mm) / height_sd_mm;
+    residual[1] = walker[kWalkerLean] / lean_sd_mm;
     return true;
   }
 };
@@ -141,32 +157,51 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   for (const HeadFoot& point : points) {
     if (!point.head_px.allFinite() || !point.foot_px.allFinite()) ThrowInputError(where, "a point is not finite");
     Pair pair{ideal(point.head_px), ideal(point.foot_px)};
-    const double person_px = (pair.foot - pair.head).norm();
-    if (!(person_px > 4)) ThrowInputError(where, "a head and foot point less than 4 px apart");
+    const double apart_px = (pair.foot - pair.head).norm();
+    if (!(apart_px > 4)) ThrowInputError(where, "a head and foot point less than 4 px apart");
+    const double person_px = apart_px / (1 - options.foot_share);
     pair.sd_within_mm = std::hypot(options.within_sd_mm, options.edge_sd_px * options.person_height_mm / person_px);
-    pair.sd_line_px = options.line_sd * person_px;
+    pair.sd_line_mm = std::hypot(options.line_sd_mm, options.edge_sd_px * options.person_height_mm / person_px);
     pairs.push_back(pair);
     pair_walker.push_back(walker_index.emplace(point.walker, walker_index.size()).first->second);
   }
   const int walkers = static_cast<int>(walker_index.size());
+  std::vector<int> frames_of(walkers, 0);
+  for (int w : pair_walker) ++frames_of[w];
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const double correlated = std::sqrt(std::clamp<double>(frames_of[pair_walker[i]], 1, options.correlated_frames));
+    pairs[i].sd_within_mm *= correlated;
+    pairs[i].sd_line_mm *= correlated;
+  }
 
   double camera[kCameraParameters] = {0, 0, 0, 0};
-  std::vector<double> heights(walkers, options.person_height_mm);
+  std::vector<double> walker(walkers * kWalkerParameters);
+  auto reset_walkers = [&] {
+    for (int w = 0; w < walkers; ++w) {
+      walker[w * kWalkerParameters + kWalkerHeight] = options.person_height_mm;
+      walker[w * kWalkerParameters + kWalkerLean] = 0;
+    }
+  };
   ceres::Problem problem;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, 1>(new PairCost{pairs[i]}),
-                             new ceres::HuberLoss(2.0), camera, &heights[pair_walker[i]]);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(new PairCost{pairs[i], options.head_radius_mm, options.foot_share}),
+        new ceres::HuberLoss(2.0), camera, &walker[pair_walker[i] * kWalkerParameters]);
   }
-  for (double& walker_height : heights) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<HeightPrior, 1, 1>(
-                                 new HeightPrior{options.person_height_mm, options.person_height_sd_mm}),
-                             nullptr, &walker_height);
+  for (int w = 0; w < walkers; ++w) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<WalkerPrior, 2, kWalkerParameters>(new WalkerPrior{
+                                 options.person_height_mm, options.person_height_sd_mm, options.lean_sd_mm}),
+                             nullptr, &walker[w * kWalkerParameters]);
   }
   if (fixed_focal) problem.SetManifold(camera, new ceres::SubsetManifold(kCameraParameters, {kLogFocal}));
+  // A camera on its side or upside down would explain heads below feet: rolls beyond
+  // kMaxRoll are not cameras over walkers (their images are turned upright first).
+  problem.SetParameterLowerBound(camera, kRoll, -kMaxRollDeg * kDeg);
+  problem.SetParameterUpperBound(camera, kRoll, kMaxRollDeg * kDeg);
 
   // Starts: a grid of fields of view and tilts (roll 0), each with the height that makes
-  // the median walker person-height tall (heights scale with the camera's); the best few
-  // by their starting cost are solved.
+  // the median walker person-height tall (heights scale with the camera's, the head's
+  // roundness aside); the best few by their starting cost are solved.
   struct Start {
     double cost;
     double camera[kCameraParameters];
@@ -184,8 +219,8 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
       std::vector<double> unit_heights;
       bool valid = true;
       for (const Pair& pair : pairs) {
-        double head_height, miss;
-        valid = valid && HeadOnVertical(start.camera, pair, &head_height, &miss) && head_height > 0;
+        double head_height, miss, depth;
+        valid = valid && HeadOnVertical(start.camera, pair, 0.0, 0.0, &head_height, &miss, &depth) && head_height > 0;
         if (!valid) break;
         unit_heights.push_back(head_height);
       }
@@ -193,7 +228,7 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
       std::nth_element(unit_heights.begin(), unit_heights.begin() + unit_heights.size() / 2, unit_heights.end());
       start.camera[kLogHeight] = std::log(options.person_height_mm / unit_heights[unit_heights.size() / 2]);
       std::copy(start.camera, start.camera + kCameraParameters, camera);
-      std::fill(heights.begin(), heights.end(), options.person_height_mm);
+      reset_walkers();
       if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &start.cost, nullptr, nullptr, nullptr)) continue;
       starts.push_back(start);
     }
@@ -210,22 +245,22 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   solver.max_num_iterations = 200;
   solver.logging_type = ceres::SILENT;
   double best_cost = HUGE_VAL;
-  std::vector<double> best_heights;
+  std::vector<double> best_walker;
   double best_camera[kCameraParameters];
   for (const Start& start : starts) {
     std::copy(start.camera, start.camera + kCameraParameters, camera);
-    std::fill(heights.begin(), heights.end(), options.person_height_mm);
+    reset_walkers();
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
     if (summary.IsSolutionUsable() && summary.final_cost < best_cost) {
       best_cost = summary.final_cost;
       std::copy(camera, camera + kCameraParameters, best_camera);
-      best_heights = heights;
+      best_walker = walker;
     }
   }
   if (!std::isfinite(best_cost)) ThrowInputError(where, "the fit did not converge from any start");
   std::copy(best_camera, best_camera + kCameraParameters, camera);
-  heights = best_heights;
+  walker = best_walker;
 
   // Uncertainty: the covariance at the minimum (singular: a direction the walkers leave
   // free), scaled by the residuals' spread when it exceeds the noise stated above.
@@ -240,7 +275,7 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
                            "nearer to and farther from the camera, or in more of the image, would");
   }
   const int residuals = problem.NumResiduals();
-  const int parameters = (fixed_focal ? 3 : 4) + walkers;
+  const int parameters = (fixed_focal ? 3 : 4) + walkers * kWalkerParameters;
   const double spread = residuals > parameters ? 2 * best_cost / (residuals - parameters) : 1;
   const double scale = std::max(1.0, spread);
   auto sd = [&](int i) { return std::sqrt(std::max(0.0, c[i * kCameraParameters + i] * scale)); };
@@ -254,13 +289,15 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   result.height_mm = {camera_height, camera_height * sd(kLogHeight)};
   result.tilt_deg = {camera[kTilt] / kDeg, sd(kTilt) / kDeg};
   result.roll_deg = {camera[kRoll] / kDeg, sd(kRoll) / kDeg};
-  result.walker_heights_mm = heights;
+  for (int w = 0; w < walkers; ++w) result.walker_heights_mm.push_back(walker[w * kWalkerParameters + kWalkerHeight]);
   double line2 = 0, height2 = 0;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    double head_height = 0, miss = 0;
-    HeadOnVertical(camera, pairs[i], &head_height, &miss);
-    line2 += miss * miss;
-    height2 += std::pow(head_height - heights[pair_walker[i]], 2);
+    double head_height = 0, miss = 0, depth = 1;
+    const double* own = &walker[pair_walker[i] * kWalkerParameters];
+    HeadOnVertical(camera, pairs[i], options.head_radius_mm, own[kWalkerHeight] * options.foot_share, &head_height,
+                   &miss, &depth);
+    line2 += std::pow((miss - own[kWalkerLean]) * focal / depth, 2);
+    height2 += std::pow(head_height - own[kWalkerHeight], 2);
   }
   result.rms_line_px = std::sqrt(line2 / pairs.size());
   result.rms_height_mm = std::sqrt(height2 / pairs.size());

@@ -31,6 +31,12 @@ struct CalibrateArguments {
   std::string pose;
   int distortion_coefficients = 5;
   bool fast_check = false;
+  // --walkers
+  std::vector<std::string> walkers;
+  std::string background;
+  std::string camera;  // intrinsics to keep
+  double person_height_m = 1.70;
+  int max_frames = 0;
 };
 
 // "9x6" -> 9 and 6 (inner corners, each at least 3).
@@ -91,7 +97,81 @@ void PrintPlacement(const Camera& camera, const std::string& how) {
               how.c_str(), centre.x(), centre.y(), centre.z(), centre.y(), forward.x(), forward.y(), forward.z());
 }
 
+void CheckOutFolder(const std::string& out) {
+  const fs::path out_folder = fs::path(out).parent_path();
+  if (!out_folder.empty() && !fs::is_directory(out_folder)) ThrowInputError("--out " + out, "no such folder");
+}
+
+void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& read_walkers) {
+  CheckOutFolder(a.out);
+  WalkerCalibrationOptions options;
+  options.person_height_mm = a.person_height_m * 1000;
+  if (!a.camera.empty()) options.intrinsics = ReadCameraYaml(a.camera).camera;
+  std::printf("calibrating from the walkers in %zu video(s) (people %.2f m tall on average, +- %.2f m)\n",
+              a.walkers.size(), a.person_height_m, options.person_height_sd_mm / 1000);
+  std::fflush(stdout);
+  // Several videos of one camera: their walkers are different people.
+  WalkerEvidence evidence;
+  int walkers = 0;
+  for (const std::string& video : a.walkers) {
+    const WalkerEvidence one = read_walkers({video, a.background, a.max_frames});
+    if (evidence.width == 0) {
+      evidence.width = one.width;
+      evidence.height = one.height;
+      evidence.fps = one.fps;
+    } else if (one.width != evidence.width || one.height != evidence.height) {
+      ThrowInputError("--walkers " + video, "frames of " + std::to_string(one.width) + "x" +
+                                                std::to_string(one.height) + ", the first video's are " +
+                                                std::to_string(evidence.width) + "x" + std::to_string(evidence.height) +
+                                                " (every video must come from the one camera)");
+    }
+    int most = -1;
+    for (HeadFoot point : one.points) {
+      most = std::max(most, point.walker);
+      point.walker += walkers;
+      evidence.points.push_back(point);
+    }
+    walkers += most + 1;
+    evidence.frames += one.frames;
+    std::printf("  %s: %zu points of %d walkers in %d frames\n", video.c_str(), one.points.size(), most + 1,
+                one.frames);
+  }
+  std::printf("%zu head-foot points of %d walkers wholly in view, in %d frames (%.1f s of video)\n",
+              evidence.points.size(), walkers, evidence.frames, evidence.fps > 0 ? evidence.frames / evidence.fps : 0.0);
+  // Frames within half a gait cycle (about half a second) share their errors.
+  if (evidence.fps > 0) options.correlated_frames = std::max(1.0, 0.5 * evidence.fps);
+  const WalkerCalibration found = CalibrateFromWalkers(evidence.points, evidence.width, evidence.height, options);
+  const double fov = 2 * std::atan(evidence.width / 2.0 / found.focal_px.value) * 180 / std::acos(-1.0);
+  if (options.intrinsics) {
+    std::printf("focal length  %.1f px (kept from %s, with its lens distortion)\n", found.focal_px.value,
+                a.camera.c_str());
+  } else {
+    std::printf("focal length  %.1f +- %.1f px (horizontal field of view %.1f degrees; principal point at the image "
+                "centre, no lens distortion assumed: give --camera for a chessboard's)\n",
+                found.focal_px.value, found.focal_px.sd, fov);
+  }
+  std::printf("height        %.0f +- %.0f mm above the floor\n", found.height_mm.value, found.height_mm.sd);
+  std::printf("tilt          %.2f +- %.2f degrees down\n", found.tilt_deg.value, found.tilt_deg.sd);
+  std::printf("roll          %.2f +- %.2f degrees\n", found.roll_deg.value, found.roll_deg.sd);
+  std::printf("fit: heads %.1f px RMS off their feet's vertical, %.0f mm RMS around their walker's height\n",
+              found.rms_line_px, found.rms_height_mm);
+  std::string heights;
+  for (double h : found.walker_heights_mm) heights += (heights.empty() ? "" : " ") + std::to_string(std::lround(h));
+  std::printf("the walkers' heights, mm: %s\n", heights.c_str());
+  CameraFile file;
+  file.camera = found.camera;
+  file.camera.name = a.name;
+  file.has_extrinsics = true;
+  PrintPlacement(file.camera, "above the world origin, looking along +z (one camera cannot see its place on the floor)");
+  WriteCameraYaml(file, a.out);
+  std::printf("wrote %s\n", a.out.c_str());
+}
+
 void RunCalibrate(const CalibrateArguments& a) {
+  if (a.images.empty() || a.board.empty() || a.square_mm <= 0) {
+    ThrowInputError("calibrate", "give --images, --board and --square (a chessboard), or --walkers VIDEO (people "
+                                 "walking past a fixed camera)");
+  }
   ChessboardOptions options;
   JGPM_CHECK(ParseBoard(a.board, &options.cols, &options.rows));  // validated by CLI11
   options.square_mm = a.square_mm;
@@ -102,8 +182,7 @@ void RunCalibrate(const CalibrateArguments& a) {
   if (a.floor_square_mm > 0) floor_options.square_mm = a.floor_square_mm;
 
   // Everything that can be checked before the slow part is.
-  const fs::path out_folder = fs::path(a.out).parent_path();
-  if (!out_folder.empty() && !fs::is_directory(out_folder)) ThrowInputError("--out " + a.out, "no such folder");
+  CheckOutFolder(a.out);
   std::vector<std::string> paths;
   for (const fs::path& image : ListImages(a.images)) paths.push_back(image.string());
   if (paths.empty()) ThrowInputError("--images " + a.images, "no .png, .jpg, .jpeg, .bmp or .tif images in the folder");
@@ -157,19 +236,18 @@ void RunCalibrate(const CalibrateArguments& a) {
 
 }  // namespace
 
-void AddCalibrationCommands(CLI::App& app) {
+void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
   auto a = std::make_shared<CalibrateArguments>();
   CLI::App* calibrate = app.add_subcommand(
       "calibrate", "Calibrate a camera from chessboard images (OpenCV) and write its YAML; optionally place it in the "
-                   "world (y up, floor y = 0, mm) by a chessboard on the floor or a pose file");
-  calibrate->add_option("--images", a->images, "folder of chessboard images (.png .jpg .jpeg .bmp .tif), all one size")
-      ->required()
-      ->check(CLI::ExistingDirectory);
-  calibrate->add_option("--board", a->board, "inner corners of the board, COLSxROWS (10 x 7 squares: 9x6)")
-      ->required()
+                   "world (y up, floor y = 0, mm) by a chessboard on the floor or a pose file. Or, with --walkers, "
+                   "the whole camera from the people walking past it");
+  CLI::Option* images =
+      calibrate->add_option("--images", a->images, "folder of chessboard images (.png .jpg .jpeg .bmp .tif), all one size")
+          ->check(CLI::ExistingDirectory);
+  CLI::Option* board = calibrate->add_option("--board", a->board, "inner corners of the board, COLSxROWS (10 x 7 squares: 9x6)")
       ->check(kBoardSize);
-  calibrate->add_option("--square", a->square_mm, "side of a square as printed, mm")
-      ->required()
+  CLI::Option* square = calibrate->add_option("--square", a->square_mm, "side of a square as printed, mm")
       ->check(kPositiveMm);
   calibrate->add_option("--out", a->out, "camera YAML to write (OpenCV's calibration keys plus the pose)")->required();
   calibrate->add_option("--name", a->name, "camera name written to the YAML")
@@ -198,9 +276,48 @@ void AddCalibrationCommands(CLI::App& app) {
                         "distortion coefficients fitted: 4 (k1 k2 p1 p2), 5 (+k3) or 8 (rational model)")
       ->check(CLI::IsMember({4, 5, 8}))
       ->capture_default_str();
-  calibrate->add_flag("--fast-check", a->fast_check,
+  CLI::Option* fast = calibrate->add_flag("--fast-check", a->fast_check,
                       "give up in milliseconds on images without a board (may miss a board in a poor image)");
-  calibrate->callback([a] { RunCalibrate(*a); });
+  CLI::Option* walkers = calibrate->add_option(
+      "--walkers", a->walkers,
+      "video of a fixed camera with people walking by (repeat for several videos of the same camera): its focal "
+      "length, height, tilt and roll from their heads and feet (no chessboard; calibration/walker_calibration.h); or a "
+      "synthetic clip folder (jgpm render), its observed masks");
+  walkers->check(CLI::ExistingPath)->excludes(images)->excludes(board)->excludes(square)->excludes(floor)->excludes(fast);
+  calibrate->add_option("--person-height", a->person_height_m, "the walkers' mean height, metres")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            size_t used = 0;
+            double value = 0;
+            try {
+              value = std::stod(text, &used);
+            } catch (const std::exception&) {
+              used = 0;
+            }
+            return used == text.size() && value >= 1.0 && value <= 2.5
+                       ? std::string()
+                       : "expected the walkers' mean height in metres, 1.0-2.5 (e.g. 1.70), got '" + text + "'";
+          },
+          "METRES"))
+      ->needs(walkers)
+      ->capture_default_str();
+  calibrate->add_option("--camera", a->camera, "camera YAML whose intrinsics and lens distortion to keep (a chessboard's)")
+      ->check(CLI::ExistingFile)
+      ->needs(walkers);
+  calibrate->add_option("--background", a->background, "picture of the empty scene (default: learnt from the video)")
+      ->check(CLI::ExistingFile)
+      ->needs(walkers);
+  calibrate->add_option("--max-frames", a->max_frames, "use at most this many frames of the video (0: all)")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(walkers);
+  calibrate->callback([a, read_walkers] {
+    if (a->walkers.empty()) {
+      RunCalibrate(*a);
+    } else {
+      if (!a->pose.empty()) ThrowInputError("--pose", "places a chessboard-calibrated camera; --walkers places its own");
+      RunCalibrateFromWalkers(*a, read_walkers);
+    }
+  });
 }
 
 }  // namespace jgpm::cli

@@ -1,12 +1,36 @@
 // `jgpm calibrate`: a camera's intrinsics from chessboard images and, optionally, its
-// place in the world (from a chessboard on the floor or a pose file), as camera YAML.
+// place in the world (from a chessboard on the floor or a pose file), as camera YAML; or,
+// with `--walkers VIDEO`, the whole camera from the people walking in a video
+// (calibration/walker_calibration.h).
 #pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "calibration/walker_calibration.h"
+
 namespace jgpm::cli {
 
+// What `calibrate --walkers` needs from a video: its walkers' head-foot points. Finding
+// people in video (background subtraction) is the tracker's layer, above this one, so the
+// command is handed the reader (tracker/cli/walker_video.h) by main.cc.
+struct WalkerVideo {
+  std::string video;
+  std::string background;  // empty-scene image, or empty: learnt from the video
+  int max_frames = 0;      // 0: all
+};
+struct WalkerEvidence {
+  int width = 0, height = 0;  // the video's frame size
+  int frames = 0;
+  double fps = 0;
+  std::vector<HeadFoot> points;
+};
+using ReadWalkers = std::function<WalkerEvidence(const WalkerVideo&)>;
+
 // Registers `calibrate` under `app`.
-void AddCalibrationCommands(CLI::App& app);
+void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers);
 
 }  // namespace jgpm::cli

@@ -16,6 +16,7 @@
 #include "prior/cli/validation_commands.h"
 #include "tracker/cli/render_commands.h"
 #include "tracker/cli/track_commands.h"
+#include "tracker/cli/walker_video.h"
 
 int main(int argc, char** argv) {
   jgpm::KeepFreedMemory();  // learning's temporaries are reused, not page-faulted in again
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
   jgpm::cli::AddTrackBench(bench);
   jgpm::cli::AddPriorBenches(bench);
   jgpm::cli::AddTransitionCommands(app);
-  jgpm::cli::AddCalibrationCommands(app);
+  jgpm::cli::AddCalibrationCommands(app, jgpm::cli::ReadWalkersFromVideo);
   jgpm::cli::AddDeviceCommands(app);
   try {
     app.parse(argc, argv);  // subcommand callbacks run here

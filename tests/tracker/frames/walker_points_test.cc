@@ -1,6 +1,7 @@
-// Head and foot points from masks drawn with known shapes: upright ellipses (walkers) whose
-// top and bottom are known to the pixel, moving across the image; a wide blob (a car), a
-// blob cut by the image's edge and a walker seen for a moment, which must not count.
+// Head and foot points from masks drawn with known shapes: upright rectangles (walkers)
+// whose top edge and lowest 30%'s centroid are known exactly, moving across the image; a
+// wide blob (a car), a blob cut by the image's edge and a walker seen for a moment, which
+// must not count.
 #include "tracker/frames/walker_points.h"
 
 #include <gtest/gtest.h>
@@ -9,9 +10,10 @@
 namespace jgpm {
 namespace {
 
-// An upright ellipse centred at (x, y) with half-axes (a, b): rows y-b .. y+b.
+// Columns x-a .. x+a, rows y-b .. y+b.
 void Draw(cv::Mat* mask, double x, double y, int a, int b) {
-  cv::ellipse(*mask, cv::Point(static_cast<int>(x), static_cast<int>(y)), cv::Size(a, b), 0, 0, 360, 255, cv::FILLED);
+  const int cx = static_cast<int>(x), cy = static_cast<int>(y);
+  cv::rectangle(*mask, cv::Point(cx - a, cy - b), cv::Point(cx + a, cy + b), 255, cv::FILLED);
 }
 
 TEST(WalkerPointFinder, FindsEachWalkersHeadAndFeetAndKeepsTheirIdentity) {
@@ -33,22 +35,23 @@ TEST(WalkerPointFinder, FindsEachWalkersHeadAndFeetAndKeepsTheirIdentity) {
     const bool is_a = point.head_px.y() < 100;
     const int walker_a = points[0].head_px.y() < 100 ? points[0].walker : 1 - points[0].walker;
     EXPECT_EQ(point.walker == walker_a, is_a);
-    // The drawn extremes: top row y - b, bottom row y + b; edges half a pixel out.
-    if (is_a) {
+    // Head: the top row's edge, half a pixel above it. Foot: the mean row of the lowest
+    // round(0.3 * rows).
+    if (is_a) {  // rows 60..140 (81): the lowest 24 are 117..140
       ++a;
-      EXPECT_NEAR(point.head_px.y(), 59.5, 1.0);
-      EXPECT_NEAR(point.foot_px.y(), 140.5, 1.0);
-    } else {
+      EXPECT_DOUBLE_EQ(point.head_px.y(), 59.5);
+      EXPECT_DOUBLE_EQ(point.foot_px.y(), (117 + 140) / 2.0);
+    } else {  // rows 130..190 (61): the lowest 18 are 173..190
       ++b;
-      EXPECT_NEAR(point.head_px.y(), 129.5, 1.0);
-      EXPECT_NEAR(point.foot_px.y(), 190.5, 1.0);
+      EXPECT_DOUBLE_EQ(point.head_px.y(), 129.5);
+      EXPECT_DOUBLE_EQ(point.foot_px.y(), (173 + 190) / 2.0);
     }
-    EXPECT_NEAR(point.head_px.x(), point.foot_px.x(), 1.0);  // upright
+    EXPECT_DOUBLE_EQ(point.head_px.x(), point.foot_px.x());  // upright
   }
   EXPECT_EQ(a, 30);
   EXPECT_EQ(b, 30);
-  // Walker A's column follows its centre.
-  EXPECT_NEAR(points[0].head_px.x() + points[1].head_px.x(), 40 + 280, 2.0);
+  // Each walker's column is its centre's.
+  EXPECT_DOUBLE_EQ(points[0].head_px.x() + points[1].head_px.x(), 40 + 280);
   EXPECT_EQ(finder.frames(), 30);
 }
 

@@ -1,0 +1,137 @@
+// `jgpm calibrate --walkers` end to end, against the camera that rendered the walkers:
+// one surveillance camera (640x480, 4.5 m up, looking 25 degrees down) watching real
+// trials walk past at several distances and headings (each trial rendered through the
+// camera turned about the vertical and moved along its view, which is the same camera
+// seeing a walk elsewhere on the floor), calibrated from the clips' masks; and every bad
+// request refused on one line with nothing written.
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <regex>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "calibration/camera.h"
+#include "calibration/walker_calibration.h"
+#include "test_support.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Result = test::CommandResult;
+Result Jgpm(const std::string& arguments) { return test::RunJgpm(arguments); }
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+// The camera, `back_mm` further back along its view and turned `yaw_deg` about the world's
+// vertical through the origin (where the lab's walks are).
+Camera Surveillance(double back_mm, double yaw_deg) {
+  const double tilt = 32 * kDeg;
+  const Eigen::Vector3d forward(0, -std::sin(tilt), std::cos(tilt));
+  const Eigen::Vector3d centre = Eigen::Vector3d(0, 4500, 0) - Eigen::Vector3d(0, 0, 9500 + back_mm);
+  Camera camera = LookAtCamera("cam0", 640, 480, 420, centre, centre + forward * 1000);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  camera.cam_from_world_rotation = camera.cam_from_world_rotation * turn.transpose();
+  camera.cam_from_world_translation_mm = -camera.cam_from_world_rotation * (turn * centre);
+  return camera;
+}
+
+// "name   12.3 +- 4.5" in the command's output.
+Estimate Printed(const std::string& out, const std::string& name) {
+  std::smatch m;
+  EXPECT_TRUE(std::regex_search(out, m, std::regex(name + " +([-0-9.]+) \\+- ([0-9.]+)"))) << name << "\n" << out;
+  return m.empty() ? Estimate{} : Estimate{std::stod(m[1]), std::stod(m[2])};
+}
+
+class CalibrateWalkersCli : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir;
+    const char* trials[] = {"07/07_02", "07/07_03", "35/35_12", "35/35_16", "39/39_12", "02/02_01", "39/39_13",
+                            "07/07_04", "35/35_15", "39/39_10"};
+    for (int k = 0; k < 10; ++k) {
+      CameraFile file;
+      file.camera = Surveillance((k % 5) * 2500.0 - 4000, (k * 67) % 360);
+      file.has_extrinsics = true;
+      const fs::path yaml = dir_->path() / ("cam" + std::to_string(k) + ".yaml");
+      WriteCameraYaml(file, yaml.string());
+      const fs::path clip = dir_->path() / ("walk" + std::to_string(k));
+      const std::string trial = trials[k];
+      const Result r = Jgpm("render --amc " + (test::CmuRoot() / "subjects" / (trial + ".amc")).string() +
+                            " --camera " + yaml.string() + " --max-frames 120 --no-contact-sheet --out " +
+                            clip.string());
+      ASSERT_EQ(r.status, 0) << r.err;
+      clips_.push_back(clip.string());
+    }
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    clips_.clear();
+  }
+  static test::TempDir* dir_;
+  static std::vector<std::string> clips_;
+};
+test::TempDir* CalibrateWalkersCli::dir_ = nullptr;
+std::vector<std::string> CalibrateWalkersCli::clips_;
+
+TEST_F(CalibrateWalkersCli, FindsTheCameraThatRenderedTheWalks) {
+  std::string walkers;
+  for (const std::string& clip : clips_) walkers += " --walkers " + clip;
+  const fs::path out = dir_->path() / "found.yaml";
+  const Result r = Jgpm("calibrate" + walkers + " --person-height 1.66 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  std::printf("%s", r.out.c_str());  // the figures, for the log
+  const Camera found = ReadCameraYaml(out.string()).camera;
+  const Camera truth = Surveillance(0, 0);
+  const CameraAngles angles = AnglesOf(found), true_angles = AnglesOf(truth);
+  // The printed figures are the written camera's.
+  const Estimate focal = Printed(r.out, "focal length"), height = Printed(r.out, "height"),
+                 tilt = Printed(r.out, "tilt"), roll = Printed(r.out, "roll");
+  EXPECT_NEAR(focal.value, found.fx, 0.1);
+  EXPECT_NEAR(height.value, angles.height_mm, 1);
+  EXPECT_NEAR(tilt.value, angles.tilt_deg, 0.01);
+  // Within the bounds (focal and height 5%, angles 2 degrees) up to the sampling
+  // error of ten 2.5 s walks, and within 2.5 of the stated uncertainties. The walkers'
+  // mean height is given (the subjects' 1.66 m) so that what is checked is the geometry.
+  EXPECT_NEAR(found.fx, truth.fx, std::min(0.10 * truth.fx, 2.5 * focal.sd)) << r.out;
+  EXPECT_NEAR(angles.height_mm, true_angles.height_mm, std::min(0.10 * true_angles.height_mm, 2.5 * height.sd)) << r.out;
+  EXPECT_NEAR(angles.tilt_deg, true_angles.tilt_deg, std::min(2.5, 2.5 * tilt.sd)) << r.out;
+  EXPECT_NEAR(angles.roll_deg, true_angles.roll_deg, std::min(2.0, 2.5 * roll.sd)) << r.out;
+  EXPECT_LT(focal.sd, 0.10 * focal.value);
+  std::string why;
+  EXPECT_TRUE(found.Check(&why)) << why;
+}
+
+TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
+  const fs::path out = dir_->path() / "never.yaml";
+  const std::string o = " --out " + out.string();
+  struct Case {
+    std::string arguments;
+    int status;
+    std::string says;
+  };
+  const Case cases[] = {
+      // One walk, along one line: the focal length is not determined.
+      {"calibrate --walkers " + clips_[0] + o, 1, "do not determine"},
+      // The same through background subtraction of its video.
+      {"calibrate --walkers " + clips_[0] + "/cam0.avi" + o, 1, "do not determine"},
+      {"calibrate --walkers " + clips_[0] + " --person-height 170" + o, 2, "metres"},
+      {"calibrate --walkers " + clips_[0] + " --images " + clips_[0] + o, 2, "excludes"},
+      {"calibrate --walkers " + (dir_->path() / "nowhere.avi").string() + o, 2, "nowhere.avi"},
+      {"calibrate --person-height 1.7" + o, 2, "--walkers"},
+      {"calibrate" + o, 1, "--walkers VIDEO"},
+  };
+  for (const Case& c : cases) {
+    const Result r = Jgpm(c.arguments);
+    EXPECT_EQ(r.status, c.status) << c.arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.arguments << "\n" << r.err;
+    EXPECT_EQ(test::CountLines(r.err.substr(r.err.rfind("jgpm: error"))), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.arguments;
+  }
+}
+
+}  // namespace
+}  // namespace jgpm

@@ -1,0 +1,45 @@
+#include "tracker/cli/walker_video.h"
+
+#include <filesystem>
+
+#include "io/cli/progress.h"
+#include "tracker/frames/frame_source_factory.h"
+#include "tracker/frames/walker_points.h"
+
+namespace jgpm::cli {
+
+WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
+  FrameSourceSpec spec;
+  if (std::filesystem::is_directory(video.video)) {
+    spec.clip = video.video;  // a synthetic clip's observed masks
+  } else {
+    spec.videos = {video.video};
+    spec.camera_guess = true;  // the masks need no camera; the source wants one
+  }
+  if (!video.background.empty()) spec.backgrounds = {video.background};
+  spec.max_frames = video.max_frames;
+  // People far from a surveillance camera are 30-60 px tall with limbs 2-3 px wide: the
+  // tracker's clean-up (an opening of 2 px radius at 480 rows) erases them. Heads and
+  // feet need the whole blob: no opening (specks are dropped by size and shape anyway).
+  spec.foreground.open_px = 0;
+  const std::unique_ptr<FrameSource> source = MakeFrameSource(spec);
+  const Camera& camera = source->cameras().front();
+  WalkerPointFinder finder(camera.width, camera.height);
+  ProgressLine line("walkers", 0.5);
+  const int total = source->NumFrames();
+  Frame frame;
+  while (source->Next(&frame)) {
+    if (!frame.dropped) finder.Add(frame.masks.front());
+    line.Update(frame.index + 1, total, "frames", "finding heads and feet");
+  }
+  line.Finish();
+  WalkerEvidence evidence;
+  evidence.width = camera.width;
+  evidence.height = camera.height;
+  evidence.frames = finder.frames();
+  evidence.fps = source->fps();
+  evidence.points = finder.Points();
+  return evidence;
+}
+
+}  // namespace jgpm::cli
