@@ -42,7 +42,7 @@ struct Pair {
 // the camera's right, down and forward axes in the world (right = -x, forward
 // (0, -sin tilt, cos tilt)): LookAtCamera's camera, rolled about its axis.
 template <typename T>
-bool HeadOnVertical(const T* camera, const Pair& pair, double head_radius_mm, const T& foot_mm, T* head_height,
+bool HeadOnVertical(const T* camera, const Pair& pair, const T& head_radius_mm, const T& foot_mm, T* head_height,
                     T* miss_mm, T* depth_mm) {
   using std::cos, std::exp, std::sin, std::sqrt;
   const T f = exp(camera[kLogFocal]);
@@ -74,24 +74,30 @@ bool HeadOnVertical(const T* camera, const Pair& pair, double head_radius_mm, co
   // (radius r, centre H - r), which meets the vertical at H - r + r / cos(depression):
   // the head's height is that, less the excess.
   const T cos_depression = sqrt(gh2 / (gh2 + g[1] * g[1]));
-  *head_height = h + t * g[1] - T(head_radius_mm) * (T(1) / cos_depression - T(1));
+  *head_height = h + t * g[1] - head_radius_mm * (T(1) / cos_depression - T(1));
   const T mx = wx + t * g[0], mz = wz + t * g[2];
   *miss_mm = (g[0] * mz - g[2] * mx) / sqrt(gh2);
   *depth_mm = t;
   return true;
 }
 
+// A walker's frame. Lengths are measured in units of the walker's own height (times the
+// prior's mean, to read as mm): the world's scale is then set by the stature prior alone
+// (in plain mm, shrinking the world would shrink every residual, and on vtest.avi that
+// put the walkers at 1.51 m against a 1.70 m prior). A head scales with its person.
 struct PairCost {
   Pair pair;
+  double person_height_mm;
   double head_radius_mm;
   double foot_share;
   template <typename T>
   bool operator()(const T* camera, const T* walker, T* residual) const {
+    const T own = walker[kWalkerHeight] / person_height_mm;
     T height, miss, depth;
-    if (!HeadOnVertical(camera, pair, head_radius_mm, walker[kWalkerHeight] * foot_share, &height, &miss, &depth))
+    if (!HeadOnVertical(camera, pair, own * head_radius_mm, walker[kWalkerHeight] * foot_share, &height, &miss, &depth))
       return false;
-    residual[0] = (height - walker[kWalkerHeight]) / pair.sd_within_mm;
-    residual[1] = (miss - walker[kWalkerLean]) / pair.sd_line_mm;
+    residual[0] = (height - walker[kWalkerHeight]) / (own * pair.sd_within_mm);
+    residual[1] = (miss - walker[kWalkerLean]) / (own * pair.sd_line_mm);
     return true;
   }
 };
@@ -185,7 +191,7 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   ceres::Problem problem;
   for (size_t i = 0; i < pairs.size(); ++i) {
     problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(new PairCost{pairs[i], options.head_radius_mm, options.foot_share}),
+        new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(new PairCost{pairs[i], options.person_height_mm, options.head_radius_mm, options.foot_share}),
         new ceres::HuberLoss(2.0), camera, &walker[pair_walker[i] * kWalkerParameters]);
   }
   for (int w = 0; w < walkers; ++w) {
@@ -294,7 +300,8 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   for (size_t i = 0; i < pairs.size(); ++i) {
     double head_height = 0, miss = 0, depth = 1;
     const double* own = &walker[pair_walker[i] * kWalkerParameters];
-    HeadOnVertical(camera, pairs[i], options.head_radius_mm, own[kWalkerHeight] * options.foot_share, &head_height,
+    HeadOnVertical(camera, pairs[i], options.head_radius_mm * own[kWalkerHeight] / options.person_height_mm,
+                   own[kWalkerHeight] * options.foot_share, &head_height,
                    &miss, &depth);
     line2 += std::pow((miss - own[kWalkerLean]) * focal / depth, 2);
     height2 += std::pow(head_height - own[kWalkerHeight], 2);

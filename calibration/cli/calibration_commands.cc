@@ -102,19 +102,20 @@ void CheckOutFolder(const std::string& out) {
   if (!out_folder.empty() && !fs::is_directory(out_folder)) ThrowInputError("--out " + out, "no such folder");
 }
 
-void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& read_walkers) {
-  CheckOutFolder(a.out);
+}  // namespace
+
+WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers) {
   WalkerCalibrationOptions options;
-  options.person_height_mm = a.person_height_m * 1000;
-  if (!a.camera.empty()) options.intrinsics = ReadCameraYaml(a.camera).camera;
+  options.person_height_mm = request.person_height_m * 1000;
+  if (!request.camera.empty()) options.intrinsics = ReadCameraYaml(request.camera).camera;
   std::printf("calibrating from the walkers in %zu video(s) (people %.2f m tall on average, +- %.2f m)\n",
-              a.walkers.size(), a.person_height_m, options.person_height_sd_mm / 1000);
+              request.videos.size(), request.person_height_m, options.person_height_sd_mm / 1000);
   std::fflush(stdout);
   // Several videos of one camera: their walkers are different people.
   WalkerEvidence evidence;
   int walkers = 0;
-  for (const std::string& video : a.walkers) {
-    const WalkerEvidence one = read_walkers({video, a.background, a.max_frames});
+  for (const std::string& video : request.videos) {
+    const WalkerEvidence one = read_walkers({video, request.background, request.max_frames});
     if (evidence.width == 0) {
       evidence.width = one.width;
       evidence.height = one.height;
@@ -144,7 +145,7 @@ void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& rea
   const double fov = 2 * std::atan(evidence.width / 2.0 / found.focal_px.value) * 180 / std::acos(-1.0);
   if (options.intrinsics) {
     std::printf("focal length  %.1f px (kept from %s, with its lens distortion)\n", found.focal_px.value,
-                a.camera.c_str());
+                request.camera.c_str());
   } else {
     std::printf("focal length  %.1f +- %.1f px (horizontal field of view %.1f degrees; principal point at the image "
                 "centre, no lens distortion assumed: give --camera for a chessboard's)\n",
@@ -158,11 +159,20 @@ void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& rea
   std::string heights;
   for (double h : found.walker_heights_mm) heights += (heights.empty() ? "" : " ") + std::to_string(std::lround(h));
   std::printf("the walkers' heights, mm: %s\n", heights.c_str());
+  PrintPlacement(found.camera, "above the world origin, looking along +z (one camera cannot see its place on the floor)");
+  return found;
+}
+
+namespace {
+
+void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& read_walkers) {
+  CheckOutFolder(a.out);
+  const WalkerCalibration found =
+      CalibrateFromWalkerVideos({a.walkers, a.background, a.max_frames, a.person_height_m, a.camera}, read_walkers);
   CameraFile file;
   file.camera = found.camera;
   file.camera.name = a.name;
   file.has_extrinsics = true;
-  PrintPlacement(file.camera, "above the world origin, looking along +z (one camera cannot see its place on the floor)");
   WriteCameraYaml(file, a.out);
   std::printf("wrote %s\n", a.out.c_str());
 }

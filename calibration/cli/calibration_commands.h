@@ -30,6 +30,18 @@ struct WalkerEvidence {
 };
 using ReadWalkers = std::function<WalkerEvidence(const WalkerVideo&)>;
 
+// The camera from the walkers in one or more videos of it (`calibrate --walkers`, `track
+// --calibrate-from-walkers`), printing what was found and each number's uncertainty.
+// InputError as CalibrateFromWalkers, or naming a video of another size.
+struct WalkerRequest {
+  std::vector<std::string> videos;
+  std::string background;
+  int max_frames = 0;
+  double person_height_m = 1.70;
+  std::string camera;  // YAML whose intrinsics to keep, or empty
+};
+WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers);
+
 // Registers `calibrate` under `app`.
 void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers);
 

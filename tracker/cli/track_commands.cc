@@ -5,7 +5,9 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include <opencv2/highgui.hpp>
@@ -16,6 +18,7 @@
 #include "io/cli/device_commands.h"
 #include "io/cli/progress.h"
 #include "io/gait/data_root.h"
+#include "tracker/cli/walker_video.h"
 #include "tracker/clip/tracking_suite.h"
 #include "tracker/run/track_bench.h"
 #include "tracker/run/track_job.h"
@@ -36,6 +39,8 @@ struct TrackArguments {
   bool no_overlay = false;
   bool show = false;
   int threads = 0;
+  bool calibrate_from_walkers = false;
+  double person_height_m = 1.70;
 };
 
 // The first Ctrl-C (or SIGTERM) ends tracking and what was tracked is written; the
@@ -94,6 +99,19 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.shape.enabled = !a.no_body_shape;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
+  std::optional<Camera> from_walkers;
+  if (a.calibrate_from_walkers) {
+    if (spec.videos.size() != 1) {
+      ThrowInputError("--calibrate-from-walkers", "calibrates one camera: give one --video (placing several cameras "
+                                                  "from the walkers they share is not done yet)");
+    }
+    WalkerRequest request;
+    request.videos = spec.videos;
+    if (!spec.backgrounds.empty()) request.background = spec.backgrounds[0];
+    request.person_height_m = a.person_height_m;
+    from_walkers = CalibrateFromWalkerVideos(request, ReadWalkersFromVideo).camera;
+    spec.cameras = {*from_walkers};
+  }
   spec.note = [](const std::string& text) {
     std::fprintf(stderr, "jgpm: %s\n", text.c_str());
   };
@@ -147,6 +165,14 @@ void RunTrack(TrackArguments a) {
   if (result.unpaired > 0) std::printf("%d frame(s) not seen by every camera were predicted\n", result.unpaired);
   if (!result.stopped.empty()) std::printf("stopped early: %s; what was tracked is written\n", result.stopped.c_str());
   for (const auto& file : result.written) std::printf("wrote %s\n", file.string().c_str());
+  if (from_walkers) {
+    CameraFile file;
+    file.camera = *from_walkers;
+    file.has_extrinsics = true;
+    const std::filesystem::path yaml = std::filesystem::path(a.job.out) / "cam0_from_walkers.yaml";
+    WriteCameraYaml(file, yaml.string());
+    std::printf("wrote %s\n", yaml.string().c_str());
+  }
 }
 
 struct BenchArguments {
@@ -251,12 +277,23 @@ void AddTrackCommands(CLI::App& app) {
   track->add_option("--device", a->job.source.devices,
                     "live V4L2 camera, /dev/videoN (see jgpm devices; repeat for several); fake:VIDEO plays a video "
                     "through the same code in real time");
-  track->add_option("--camera", a->job.source.camera_yamls, "calibrated camera YAML per video/images/device source "
-                                                            "(jgpm calibrate; repeat, same order)")
-      ->check(CLI::ExistingFile);
+  CLI::Option* camera =
+      track->add_option("--camera", a->job.source.camera_yamls, "calibrated camera YAML per video/images/device source "
+                                                                "(jgpm calibrate; repeat, same order)")
+          ->check(CLI::ExistingFile);
+  CLI::Option* from_walkers = track->add_flag(
+      "--calibrate-from-walkers", a->calibrate_from_walkers,
+      "no calibration: the camera from the people walking in the --video, first (jgpm calibrate --walkers; written "
+      "to OUT/cam0_from_walkers.yaml)");
+  from_walkers->excludes(camera);
+  track->add_option("--person-height", a->person_height_m, "with --calibrate-from-walkers: the walkers' mean height, m")
+      ->check(CLI::Range(1.0, 2.5))
+      ->needs(from_walkers)
+      ->capture_default_str();
   track->add_flag("--camera-guess", a->job.source.camera_guess,
                   "no calibration: a camera from the image size, --guess-fov, placed --guess-height above the floor "
-                  "and tilted --guess-tilt down (rough 3-D)");
+                  "and tilted --guess-tilt down (rough 3-D)")
+      ->excludes(from_walkers);
   track->add_option("--guess-fov", a->job.source.guess.fov_deg, "horizontal field of view, degrees")
       ->check(CLI::Range(10.0, 170.0))
       ->capture_default_str();

@@ -12,8 +12,9 @@
 namespace jgpm {
 namespace {
 
-// The camera of source k: its YAML, or the guess.
+// The camera of source k: given, its YAML, or the guess.
 Camera SourceCamera(const FrameSourceSpec& spec, const ImageSource& source, size_t k, size_t count) {
+  if (!spec.cameras.empty()) return spec.cameras[k];
   if (spec.camera_guess) {
     return GuessCamera(count == 1 ? "cam0" : "cam" + std::to_string(k), source.width(), source.height(), spec.guess);
   }
@@ -45,7 +46,7 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   const int kinds = !spec.clip.empty() + !spec.videos.empty() + !spec.images.empty() + !spec.devices.empty();
   if (kinds != 1) ThrowInputError("--clip/--video/--images/--device", "give exactly one source of frames");
   if (!spec.clip.empty()) {
-    if (!spec.camera_yamls.empty() || spec.camera_guess) {
+    if (!spec.camera_yamls.empty() || !spec.cameras.empty() || spec.camera_guess) {
       ThrowInputError("--camera", "a clip brings its own cameras (choose among them with --cameras)");
     }
     if (!spec.backgrounds.empty()) ThrowInputError("--background", "a clip's background is learnt from its videos");
@@ -60,15 +61,20 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   if (spec.exact_masks) ThrowInputError("--exact-masks", "only a clip has exact masks");
   if (spec.images.empty() && spec.images_fps > 0) ThrowInputError("--fps", "is the frame rate of an --images folder");
   const size_t wanted = std::max<size_t>({1, spec.videos.size(), spec.devices.size()});
-  if (spec.camera_guess && !spec.camera_yamls.empty()) {
-    ThrowInputError("--camera-guess", "give --camera YAMLs or the guess, not both");
+  if (spec.camera_guess + !spec.camera_yamls.empty() + !spec.cameras.empty() > 1) {
+    ThrowInputError("--camera-guess", "give --camera YAMLs, the guess or a calibration from the walkers, one of them");
   }
-  if (!spec.camera_guess && spec.camera_yamls.size() != wanted) {
+  if (!spec.cameras.empty() && spec.cameras.size() != wanted) {
+    ThrowInputError("--calibrate-from-walkers", "one camera per video source (" + std::to_string(wanted) + ", got " +
+                                                    std::to_string(spec.cameras.size()) + ")");
+  }
+  if (!spec.camera_guess && spec.cameras.empty() && spec.camera_yamls.size() != wanted) {
     ThrowInputError("--camera", "give one calibrated camera YAML per video source (" + std::to_string(wanted) +
                                     ", got " + std::to_string(spec.camera_yamls.size()) +
                                     "): make one with `jgpm calibrate --images CHESSBOARD_DIR --board COLSxROWS "
-                                    "--square MM --floor-image FLOOR.png --out CAM.yaml`, or ask for a rough guess "
-                                    "with --camera-guess");
+                                    "--square MM --floor-image FLOOR.png --out CAM.yaml` or, with people walking in "
+                                    "the video, `jgpm calibrate --walkers VIDEO --out CAM.yaml` (or track with "
+                                    "--calibrate-from-walkers), or ask for a rough guess with --camera-guess");
   }
   std::vector<std::unique_ptr<ImageSource>> sources;
   for (const std::string& video : spec.videos) sources.push_back(std::make_unique<VideoFileSource>(video));

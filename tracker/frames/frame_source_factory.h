@@ -28,6 +28,7 @@ struct FrameSourceSpec {
   // or a guess.
   std::vector<int> clip_cameras;
   std::vector<std::string> camera_yamls;
+  std::vector<Camera> cameras;  // or cameras already made (calibrated from the walkers)
   bool camera_guess = false;
   CameraGuess guess;
   // Masks: a clip's exact masks instead of its observed ones; or, when `foreground` is

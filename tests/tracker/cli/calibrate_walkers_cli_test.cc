@@ -123,6 +123,16 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
       {"calibrate --walkers " + (dir_->path() / "nowhere.avi").string() + o, 2, "nowhere.avi"},
       {"calibrate --person-height 1.7" + o, 2, "--walkers"},
       {"calibrate" + o, 1, "--walkers VIDEO"},
+      // Tracking with the camera calibrated first: the calibration's refusal stops it.
+      {"track --model " + (dir_->path() / "none.json").string() + " --video " + clips_[0] + "/cam0.avi" +
+           " --calibrate-from-walkers --out " + (dir_->path() / "track").string(),
+       1, "do not determine"},
+      {"track --model m.json --clip " + clips_[0] + " --calibrate-from-walkers --out " +
+           (dir_->path() / "track").string(),
+       1, "one --video"},
+      {"track --model m.json --video " + clips_[0] + "/cam0.avi --camera " + clips_[0] + "/cam0.yaml" +
+           " --calibrate-from-walkers --out " + (dir_->path() / "track").string(),
+       2, "excludes"},
   };
   for (const Case& c : cases) {
     const Result r = Jgpm(c.arguments);
@@ -130,6 +140,7 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.arguments << "\n" << r.err;
     EXPECT_EQ(test::CountLines(r.err.substr(r.err.rfind("jgpm: error"))), 1) << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.arguments;
+    EXPECT_FALSE(fs::exists(dir_->path() / "track")) << c.arguments;
   }
 }
 
