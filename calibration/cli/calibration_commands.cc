@@ -37,6 +37,7 @@ struct CalibrateArguments {
   std::string camera;  // intrinsics to keep
   double person_height_m = 1.70;
   int max_frames = 0;
+  double fps = 0;
 };
 
 // "9x6" -> 9 and 6 (inner corners, each at least 3).
@@ -115,7 +116,7 @@ WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const 
   WalkerEvidence evidence;
   int walkers = 0;
   for (const std::string& video : request.videos) {
-    const WalkerEvidence one = read_walkers({video, request.background, request.max_frames});
+    const WalkerEvidence one = read_walkers({video, request.background, request.max_frames, request.fps});
     if (evidence.width == 0) {
       evidence.width = one.width;
       evidence.height = one.height;
@@ -168,7 +169,8 @@ namespace {
 void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& read_walkers) {
   CheckOutFolder(a.out);
   const WalkerCalibration found =
-      CalibrateFromWalkerVideos({a.walkers, a.background, a.max_frames, a.person_height_m, a.camera}, read_walkers);
+      CalibrateFromWalkerVideos({a.walkers, a.background, a.max_frames, a.person_height_m, a.camera, a.fps},
+                                read_walkers);
   CameraFile file;
   file.camera = found.camera;
   file.camera.name = a.name;
@@ -292,7 +294,7 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
       "--walkers", a->walkers,
       "video of a fixed camera with people walking by (repeat for several videos of the same camera): its focal "
       "length, height, tilt and roll from their heads and feet (no chessboard; calibration/walker_calibration.h); or a "
-      "synthetic clip folder (jgpm render), its observed masks");
+      "folder of its frames (jgpm capture; with --fps), or a synthetic clip folder (jgpm render), its observed masks");
   walkers->check(CLI::ExistingPath)->excludes(images)->excludes(board)->excludes(square)->excludes(floor)->excludes(fast);
   calibrate->add_option("--person-height", a->person_height_m, "the walkers' mean height, metres")
       ->check(CLI::Validator(
@@ -316,6 +318,9 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
       ->needs(walkers);
   calibrate->add_option("--background", a->background, "picture of the empty scene (default: learnt from the video)")
       ->check(CLI::ExistingFile)
+      ->needs(walkers);
+  calibrate->add_option("--fps", a->fps, "the frame rate of --walkers folders of frames")
+      ->check(CLI::PositiveNumber)
       ->needs(walkers);
   calibrate->add_option("--max-frames", a->max_frames, "use at most this many frames of the video (0: all)")
       ->check(CLI::NonNegativeNumber)

@@ -18,9 +18,10 @@ namespace jgpm::cli {
 // people in video (background subtraction) is the tracker's layer, above this one, so the
 // command is handed the reader (tracker/cli/walker_video.h) by main.cc.
 struct WalkerVideo {
-  std::string video;
+  std::string video;       // a video file, a folder of frames, or a synthetic clip folder
   std::string background;  // empty-scene image, or empty: learnt from the video
   int max_frames = 0;      // 0: all
+  double fps = 0;          // a folder of frames' rate
 };
 struct WalkerEvidence {
   int width = 0, height = 0;  // the video's frame size
@@ -39,6 +40,7 @@ struct WalkerRequest {
   int max_frames = 0;
   double person_height_m = 1.70;
   std::string camera;  // YAML whose intrinsics to keep, or empty
+  double fps = 0;      // of folders of frames
 };
 WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers);
 

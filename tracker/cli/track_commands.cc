@@ -5,9 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <memory>
-#include <optional>
 #include <thread>
 
 #include <opencv2/highgui.hpp>
@@ -99,7 +97,6 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.shape.enabled = !a.no_body_shape;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
-  std::optional<Camera> from_walkers;
   if (a.calibrate_from_walkers) {
     if (spec.videos.size() != 1) {
       ThrowInputError("--calibrate-from-walkers", "calibrates one camera: give one --video (placing several cameras "
@@ -109,8 +106,7 @@ void RunTrack(TrackArguments a) {
     request.videos = spec.videos;
     if (!spec.backgrounds.empty()) request.background = spec.backgrounds[0];
     request.person_height_m = a.person_height_m;
-    from_walkers = CalibrateFromWalkerVideos(request, ReadWalkersFromVideo).camera;
-    spec.cameras = {*from_walkers};
+    spec.cameras = {CalibrateFromWalkerVideos(request, ReadWalkersFromVideo).camera};
   }
   spec.note = [](const std::string& text) {
     std::fprintf(stderr, "jgpm: %s\n", text.c_str());
@@ -165,14 +161,6 @@ void RunTrack(TrackArguments a) {
   if (result.unpaired > 0) std::printf("%d frame(s) not seen by every camera were predicted\n", result.unpaired);
   if (!result.stopped.empty()) std::printf("stopped early: %s; what was tracked is written\n", result.stopped.c_str());
   for (const auto& file : result.written) std::printf("wrote %s\n", file.string().c_str());
-  if (from_walkers) {
-    CameraFile file;
-    file.camera = *from_walkers;
-    file.has_extrinsics = true;
-    const std::filesystem::path yaml = std::filesystem::path(a.job.out) / "cam0_from_walkers.yaml";
-    WriteCameraYaml(file, yaml.string());
-    std::printf("wrote %s\n", yaml.string().c_str());
-  }
 }
 
 struct BenchArguments {
@@ -283,8 +271,8 @@ void AddTrackCommands(CLI::App& app) {
           ->check(CLI::ExistingFile);
   CLI::Option* from_walkers = track->add_flag(
       "--calibrate-from-walkers", a->calibrate_from_walkers,
-      "no calibration: the camera from the people walking in the --video, first (jgpm calibrate --walkers; written "
-      "to OUT/cam0_from_walkers.yaml)");
+      "no calibration: the camera from the people walking in the --video, first (jgpm calibrate --walkers; "
+      "written to OUT/cam0.yaml)");
   from_walkers->excludes(camera);
   track->add_option("--person-height", a->person_height_m, "with --calibrate-from-walkers: the walkers' mean height, m")
       ->check(CLI::Range(1.0, 2.5))

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "io/base/error.h"
 #include "io/cli/progress.h"
 #include "tracker/frames/frame_source_factory.h"
 #include "tracker/frames/walker_points.h"
@@ -10,8 +11,13 @@ namespace jgpm::cli {
 
 WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   FrameSourceSpec spec;
-  if (std::filesystem::is_directory(video.video)) {
+  if (std::filesystem::exists(std::filesystem::path(video.video) / "ground_truth.json")) {
     spec.clip = video.video;  // a synthetic clip's observed masks
+  } else if (std::filesystem::is_directory(video.video)) {
+    if (!(video.fps > 0)) ThrowInputError("--walkers " + video.video, "a folder of frames: give its frame rate with --fps");
+    spec.images = video.video;
+    spec.images_fps = video.fps;
+    spec.camera_guess = true;
   } else {
     spec.videos = {video.video};
     spec.camera_guess = true;  // the masks need no camera; the source wants one

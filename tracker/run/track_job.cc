@@ -247,6 +247,9 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   batch.Add(dir / "tracked.asf", motion.asf);
   batch.Add(dir / "tracked.bvh", FormatBvh(AcclaimToBvh(motion.skeleton, motion.motion)));
   if (result.errors) batch.Add(dir / "track.png", EncodePng(ErrorPlot(*result.errors, run), "track.png"));
+  // The cameras as the run used them (given, guessed or calibrated from the walkers), so
+  // that anyone can project poses.json into the images.
+  for (const Camera& c : run.cameras) batch.Add(dir / (c.name + ".yaml"), FormatCameraYaml({c, true}));
   batch.Commit();
   if (o.overlays && !images_now) {
     ClipFrameSourceOptions image_options;
@@ -268,6 +271,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     result.written.push_back(fs::path(o.out) / name);
   }
   if (result.errors) result.written.push_back(fs::path(o.out) / "track.png");
+  for (const Camera& c : run.cameras) result.written.push_back(fs::path(o.out) / (c.name + ".yaml"));
   if (o.overlays)
     for (const Camera& c : run.cameras) result.written.push_back(fs::path(o.out) / ("overlay_" + c.name + ".avi"));
   if (o.save_masks) result.written.push_back(fs::path(o.out) / "masks");

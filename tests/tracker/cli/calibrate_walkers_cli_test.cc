@@ -11,6 +11,8 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "calibration/camera.h"
 #include "calibration/walker_calibration.h"
@@ -107,6 +109,12 @@ TEST_F(CalibrateWalkersCli, FindsTheCameraThatRenderedTheWalks) {
 
 TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
   const fs::path out = dir_->path() / "never.yaml";
+  // A walk's video as a folder of frames (as jgpm capture saves them).
+  const fs::path frames = dir_->path() / "frames";
+  fs::create_directories(frames);
+  cv::VideoCapture video(clips_[0] + "/cam0.avi");
+  cv::Mat image;
+  for (int k = 0; video.read(image); ++k) ASSERT_TRUE(cv::imwrite((frames / cv::format("%06d.png", k)).string(), image));
   const std::string o = " --out " + out.string();
   struct Case {
     std::string arguments;
@@ -123,6 +131,8 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
       {"calibrate --walkers " + (dir_->path() / "nowhere.avi").string() + o, 2, "nowhere.avi"},
       {"calibrate --person-height 1.7" + o, 2, "--walkers"},
       {"calibrate" + o, 1, "--walkers VIDEO"},
+      {"calibrate --walkers " + frames.string() + o, 1, "--fps"},
+      {"calibrate --walkers " + frames.string() + " --fps 30" + o, 1, "do not determine"},
       // Tracking with the camera calibrated first: the calibration's refusal stops it.
       {"track --model " + (dir_->path() / "none.json").string() + " --video " + clips_[0] + "/cam0.avi" +
            " --calibrate-from-walkers --out " + (dir_->path() / "track").string(),

@@ -20,6 +20,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "calibration/camera.h"
+#include "calibration/camera_guess.h"
 #include "io/base/json_file.h"
 #include "io/base/text_reader.h"
 #include "io/mocap/asf.h"
@@ -327,6 +329,23 @@ TEST(TrackCli, VideosAndImageFoldersAreTrackedThroughBackgroundSubtraction) {
       TrackVideos(dir.path() / "guessed", "--video " + (clip / "cam0.avi").string() + " --camera-guess");
   ASSERT_EQ(guessed.status, 0) << guessed.err;
   EXPECT_TRUE(fs::exists(dir.path() / "guessed/poses.json"));
+
+  // Every run writes the cameras it used: the given ones as given, the guess as guessed.
+  for (const char* name : {"cam0", "cam1"}) {
+    const Camera given = ReadCameraYaml((clip / (std::string(name) + ".yaml")).string()).camera;
+    const CameraFile used = ReadCameraYaml((dir.path() / "videos" / (std::string(name) + ".yaml")).string());
+    EXPECT_TRUE(used.has_extrinsics);
+    EXPECT_EQ(used.camera.name, name);
+    EXPECT_NEAR(used.camera.fx, given.fx, 1e-9);
+    EXPECT_NEAR(used.camera.cx, given.cx, 1e-9);
+    EXPECT_TRUE(used.camera.cam_from_world_rotation.isApprox(given.cam_from_world_rotation, 1e-12));
+    EXPECT_TRUE(used.camera.cam_from_world_translation_mm.isApprox(given.cam_from_world_translation_mm, 1e-9));
+  }
+  CameraGuess guess;
+  const Camera expected = GuessCamera("cam0", 160, 120, guess);
+  const Camera written = ReadCameraYaml((dir.path() / "guessed/cam0.yaml").string()).camera;
+  EXPECT_NEAR(written.fx, expected.fx, 1e-9);
+  EXPECT_TRUE(written.CentreInWorld().isApprox(expected.CentreInWorld(), 1e-9));
 }
 
 TEST(TrackCli, BadVideosAndFoldersGiveOneLineAndWriteNothing) {
