@@ -38,6 +38,7 @@ struct TrackArguments {
   bool show = false;
   int threads = 0;
   bool calibrate_from_walkers = false;
+  bool full_resolution = false;
   double person_height_m = 1.70;
 };
 
@@ -95,6 +96,7 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.refinement.adapt_posture = a.adapt == "posture";
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.shape.enabled = !a.no_body_shape;
+  a.job.working.enabled = !a.full_resolution;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
   if (a.calibrate_from_walkers) {
@@ -140,6 +142,16 @@ void RunTrack(TrackArguments a) {
               n, tracked, predicted, lost, run.source.c_str(), run.model_path.c_str(), run.state_space.c_str(),
               run.options.annealing.particles, run.options.annealing.layers, run.init.c_str(),
               run.tracking_seconds > 0 ? n / run.tracking_seconds : 0.0);
+  std::string working;
+  for (size_t c = 0; c < run.cameras.size() && c < result.working_cameras.size(); ++c) {
+    const Camera& w = result.working_cameras[c];
+    if (w.width == run.cameras[c].width && w.height == run.cameras[c].height) continue;
+    working += " " + w.name + " " + std::to_string(w.width) + "x" + std::to_string(w.height);
+  }
+  if (!working.empty()) {
+    std::printf("working resolution (people brought to about %.0f px tall):%s\n", a.job.working.person_px,
+                working.c_str());
+  }
   std::printf("with reading the frames%s: %.1f frames/s\n",
               a.job.source.clip.empty() || a.job.source.clip_foreground ? " and background subtraction" : "",
               result.loop_seconds > 0 ? n / result.loop_seconds : 0.0);
@@ -304,6 +316,9 @@ void AddTrackCommands(CLI::App& app) {
                     "(keep out of view meanwhile)")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
+  track->add_flag("--full-resolution", a->full_resolution,
+                  "track at the input's resolution (default: people taller than 200 px are brought to 200 px, "
+                  "tracker/frames/working_resolution.h)");
   track->add_flag("--save-masks", a->job.save_masks, "also write the masks tracked, OUT/masks/CAMERA/NNNNNN.png");
   // Live camera.
   track->add_option("--size", a->size, "camera image size asked for, WxH (the nearest the device offers is used)")

@@ -147,10 +147,11 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     model = ModelOnSkeleton(*model, o.asf);
     tracker_options.known_size = true;
   }
-  const std::unique_ptr<FrameSource> source = MakeFrameSource(o.source);
-  const auto* clip = dynamic_cast<const ClipFrameSource*>(source.get());
-  const auto* video = dynamic_cast<const VideoFrameSource*>(source.get());
+  std::unique_ptr<FrameSource> made = MakeFrameSource(o.source);
+  const auto* clip = dynamic_cast<const ClipFrameSource*>(made.get());
+  const auto* video = dynamic_cast<const VideoFrameSource*>(made.get());
   if (o.truth_start && !clip) ThrowInputError("--init truth", "needs a clip's ground truth (--clip)");
+  const auto source = std::make_unique<WorkingResolutionSource>(std::move(made), o.working, video && video->live());
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
 
@@ -166,7 +167,8 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   run.init = o.truth_start ? "truth" : "auto";
   run.coordinate_names = tracker.state_model().CoordinateNames();
   run.state_space = tracker.state_model().Name();
-  run.cameras = source->cameras();
+  run.cameras = source->full_cameras();
+  result.working_cameras = source->cameras();
   run.fps = source->fps();
   run.options = tracker_options;
   result.live = video && video->live();

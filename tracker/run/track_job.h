@@ -17,6 +17,7 @@
 #include "tracker/clip/clip_format.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/frames/frame_source_factory.h"
+#include "tracker/frames/working_resolution.h"
 #include "tracker/run/track_output.h"
 
 namespace jgpm {
@@ -36,6 +37,7 @@ struct TrackJobOptions {
   // Each frame's overlay images as they are made (a live window), when set.
   std::function<void(const std::vector<cv::Mat>& overlays)> show;
   TrackerOptions tracker;
+  WorkingResolutionOptions working;  // masks brought down to the working resolution
 };
 
 struct TrackJobResult {
@@ -51,6 +53,8 @@ struct TrackJobResult {
                             // without writing outputs (run.tracking_seconds: filtering)
   double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate, after the
                                                    // frames held for the start
+  std::vector<Camera> working_cameras;  // each camera as the tracker saw it (the working
+                                        // resolution's; run.cameras are the full-size ones)
 };
 
 // Each tracked frame, the number of frames (-1: live) and the frames the source has lost

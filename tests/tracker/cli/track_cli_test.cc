@@ -285,6 +285,37 @@ Result TrackVideos(const fs::path& out, const std::string& sources, int threads 
                        " --particles 60 --layers 3 --no-overlay --threads " + std::to_string(threads));
 }
 
+// The error (bodytrack's 14 joints, absolute mm) a run printed.
+double PrintedError(const std::string& out) {
+  const size_t at = out.find("error over 14 joints (bodytrack)");
+  EXPECT_NE(at, std::string::npos) << out;
+  return at == std::string::npos ? -1 : std::stod(out.substr(at + std::string("error over 14 joints (bodytrack)").size()));
+}
+
+TEST(TrackCli, TheSameWalkAt320x240And1280x720TracksAlike) {
+  // People about 80 px tall at 320x240 and 240 px at 1280x720: the working resolution
+  // brings the latter to 200 px, where the pixel constants hold (working_resolution.h).
+  test::TempDir dir;
+  double error[2] = {0, 0};
+  const char* sizes[2] = {" --width 320 --height 240", " --width 1280 --height 720"};
+  for (int k = 0; k < 2; ++k) {
+    const fs::path clip = dir.path() / ("clip" + std::to_string(k));
+    const Result r = test::RunJgpm("render --amc " + (test::CmuRoot() / "subjects/35/35_12.amc").string() + " --out " +
+                                   clip.string() + " --cameras 2 --max-frames 40 --no-contact-sheet" + sizes[k]);
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (int seed : {1, 2}) {
+      const Result t = test::RunJgpm("track --model " + Shared().model.string() + " --clip " + clip.string() +
+                                     " --out " + (dir.path() / ("out" + std::to_string(k) + std::to_string(seed))).string() +
+                                     " --threads 2 --no-overlay --seed " + std::to_string(seed));
+      ASSERT_EQ(t.status, 0) << t.err;
+      EXPECT_EQ(t.out.find("working resolution") != std::string::npos, k == 1) << t.out;
+      error[k] += PrintedError(t.out) / 2;
+    }
+  }
+  std::printf("320x240: %.1f mm, 1280x720: %.1f mm (mean of 2 seeds)\n", error[0], error[1]);
+  EXPECT_NEAR(error[1], error[0], 0.10 * error[0]);
+}
+
 TEST(TrackCli, VideosAndImageFoldersAreTrackedThroughBackgroundSubtraction) {
   const fs::path& clip = Shared().clip;
   test::TempDir dir;
