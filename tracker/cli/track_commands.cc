@@ -163,10 +163,15 @@ void RunTrack(TrackArguments a) {
                   name, e.absolute_mm, e.root_relative_mm, e.procrustes_mm, 100 * e.failure_rate, 100 * e.swap_rate);
     }
   }
-  if (result.live) {
-    std::printf("live: latency from capture to estimate %.1f ms mean, %.1f ms worst (after the %d frames the start "
-                "holds); %d frames dropped by the camera (processing slower than capture)\n",
-                result.mean_latency_ms, result.max_latency_ms, a.job.tracker.start_frames, result.skipped);
+  if (result.live && result.latency_frames == 0) {
+    std::printf("live: no latency measured (no frame came after the %d frames the start holds); %d frames dropped by "
+                "the camera\n",
+                a.job.tracker.start_frames, result.skipped);
+  } else if (result.live) {
+    std::printf("live: latency from capture to estimate %.1f ms mean, %.1f ms worst over %d frames (after the %d "
+                "frames the start holds); %d frames dropped by the camera (processing slower than capture)\n",
+                result.mean_latency_ms, result.max_latency_ms, result.latency_frames, a.job.tracker.start_frames,
+                result.skipped);
   } else if (result.skipped > 0) {
     std::printf("%d frame(s) of the video did not decode and were skipped\n", result.skipped);
   }

@@ -229,6 +229,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     result.skipped = video->skipped();
     result.unpaired = video->unpaired();
   }
+  result.latency_frames = latency_count;
   if (latency_count) result.mean_latency_ms = latency_sum / latency_count;
   if (run.frames.empty()) {
     ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));

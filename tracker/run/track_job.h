@@ -53,6 +53,7 @@ struct TrackJobResult {
                             // without writing outputs (run.tracking_seconds: filtering)
   double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate, after the
                                                    // frames held for the start
+  int latency_frames = 0;                          // ...over this many frames (0: none)
   std::vector<Camera> working_cameras;  // each camera as the tracker saw it (the working
                                         // resolution's; run.cameras are the full-size ones)
 };

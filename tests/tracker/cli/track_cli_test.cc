@@ -434,6 +434,19 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   EXPECT_NE(live.out.find("went away"), std::string::npos) << live.out;
   EXPECT_GE(Statuses(dir.path() / "live").size(), 5u);
 
+  // A camera that goes away while the start still holds its frames: no latency to tell.
+  const fs::path short_take = dir.path() / "short.avi";
+  {
+    cv::VideoWriter writer(short_take.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, cv::Size(160, 120));
+    cv::VideoCapture video((clip / "cam0.avi").string());
+    cv::Mat image;
+    for (int k = 0; k < 8 && video.read(image); ++k) writer.write(image);
+  }
+  const Result held = TrackVideos(dir.path() / "held", "--device fake:" + short_take.string() + camera);
+  ASSERT_EQ(held.status, 0) << held.err;
+  EXPECT_NE(held.out.find("live: no latency measured"), std::string::npos) << held.out;
+  EXPECT_EQ(held.out.find("0.0 ms mean"), std::string::npos) << held.out;
+
   // A take of 160 frames (5.3 s), interrupted once 3 frames are tracked (their masks
   // written), however slow the machine.
   const fs::path take = dir.path() / "take.avi";
