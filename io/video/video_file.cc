@@ -39,7 +39,7 @@ cv::VideoCapture OpenVideo(const std::string& path) {
 
 }  // namespace
 
-VideoFileSource::VideoFileSource(const std::string& path) : path_(path), video_(OpenVideo(path)) {
+VideoFileSource::VideoFileSource(const std::string& path, int sample) : path_(path), video_(OpenVideo(path)) {
   width_ = static_cast<int>(video_.get(cv::CAP_PROP_FRAME_WIDTH));
   height_ = static_cast<int>(video_.get(cv::CAP_PROP_FRAME_HEIGHT));
   fps_ = video_.get(cv::CAP_PROP_FPS);
@@ -52,7 +52,14 @@ VideoFileSource::VideoFileSource(const std::string& path) : path_(path), video_(
   cv::Mat frame;
   double last_ms = -1;
   int gaps = 0;
+  // Sample's frames, by their decodable index, if every stated frame decodes.
+  const std::vector<int> wanted = EvenSample(stated_, sample);
+  size_t w = 0;
   while (ReadDecodable(&scan, stated_, &frame)) {
+    if (w < wanted.size() && decodable_ == wanted[w]) {
+      sampled_.push_back(frame.clone());
+      ++w;
+    }
     if (frame.cols != width_ || frame.rows != height_) {
       ThrowInputError(path, "frame " + std::to_string(decodable_) + " is " + std::to_string(frame.cols) + "x" +
                                 std::to_string(frame.rows) + ", not the stated " + std::to_string(width_) + "x" +
@@ -64,6 +71,11 @@ VideoFileSource::VideoFileSource(const std::string& path) : path_(path), video_(
     ++decodable_;
   }
   if (decodable_ == 0) ThrowInputError(path, "has no frame that decodes (empty or damaged video)");
+  if (decodable_ == stated_ && w == wanted.size()) {
+    sampled_for_ = sample;
+  } else {
+    sampled_.clear();
+  }
   // A cut file keeps its header's count; a few frames of slack for containers that round.
   if (stated_ > 0 && decodable_ + gaps < stated_ - std::max(2, stated_ / 100)) {
     ThrowInputError(path, "is truncated: only " + std::to_string(decodable_ + gaps) + " of the " +
@@ -86,6 +98,10 @@ bool VideoFileSource::Read(Image* image) {
 }
 
 std::vector<cv::Mat> VideoFileSource::Sample(int n) {
+  if (n > 0 && n == sampled_for_) {
+    sampled_for_ = 0;
+    return std::move(sampled_);  // EvenSample(decodable_, n): decodable_ is stated_
+  }
   const std::vector<int> wanted = EvenSample(decodable_, n);
   std::vector<cv::Mat> frames;
   cv::VideoCapture scan = OpenVideo(path_);

@@ -20,8 +20,11 @@ namespace jgpm {
 class VideoFileSource : public ImageSource {
  public:
   // InputError naming the file: missing, not a video OpenCV can open, no decodable frame,
-  // truncated.
-  explicit VideoFileSource(const std::string& path);
+  // truncated. The damage check decodes the whole file; with `sample` > 0 it also keeps
+  // the frames Sample(sample) will ask for, so that learning the background costs no
+  // second decoding (when every frame the container states decodes; else Sample decodes
+  // again).
+  explicit VideoFileSource(const std::string& path, int sample = 0);
 
   const std::string& name() const override { return path_; }
   int width() const override { return width_; }
@@ -41,6 +44,8 @@ class VideoFileSource : public ImageSource {
   int decodable_ = 0;  // frames that decode
   int next_ = 0;       // position in the container, decodable or not
   int skipped_ = 0;
+  int sampled_for_ = 0;           // the n whose Sample was kept during the check
+  std::vector<cv::Mat> sampled_;
 };
 
 }  // namespace jgpm

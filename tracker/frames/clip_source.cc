@@ -52,7 +52,8 @@ ClipFrameSource::ClipFrameSource(const std::filesystem::path& folder, const Clip
         extractors_.back().SetBackground(image);
       } else {
         const std::string video = paths_.Video(camera.name).string();
-        extractors_.back().Learn(VideoFileSource(video).Sample(options.foreground->learning_frames));
+        extractors_.back().Learn(
+            VideoFileSource(video, options.foreground->learning_frames).Sample(options.foreground->learning_frames));
       }
     }
   }

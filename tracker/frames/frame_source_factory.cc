@@ -77,7 +77,10 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
                                     "--calibrate-from-walkers), or ask for a rough guess with --camera-guess");
   }
   std::vector<std::unique_ptr<ImageSource>> sources;
-  for (const std::string& video : spec.videos) sources.push_back(std::make_unique<VideoFileSource>(video));
+  // The background is learnt from a sample of each video unless given: taken during the
+  // video's damage check.
+  const int sample = spec.backgrounds.empty() ? spec.foreground.learning_frames : 0;
+  for (const std::string& video : spec.videos) sources.push_back(std::make_unique<VideoFileSource>(video, sample));
   if (!spec.images.empty()) sources.push_back(std::make_unique<ImageFolderSource>(spec.images, spec.images_fps));
   for (const std::string& device : spec.devices) sources.push_back(OpenCamera(spec, device));
   std::vector<Camera> cameras;

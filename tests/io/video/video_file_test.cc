@@ -75,6 +75,21 @@ TEST(VideoFile, SampleSpreadsOverTheWholeVideo) {
   EXPECT_EQ(image.index, 0);
 }
 
+TEST(VideoFile, TheSampleKeptDuringTheCheckIsTheSampleDecodedAgain) {
+  test::TempDir dir;
+  const std::string path = WriteVideo(dir, "walk.avi", 23).string();
+  VideoFileSource kept(path, 5), decoded(path);
+  const std::vector<cv::Mat> a = kept.Sample(5), b = decoded.Sample(5);
+  ASSERT_EQ(a.size(), 5u);
+  ASSERT_EQ(b.size(), 5u);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(cv::norm(a[i], b[i], cv::NORM_INF), 0) << i;
+  // Asked again, or for another count: decoded.
+  const std::vector<cv::Mat> again = kept.Sample(5), three = kept.Sample(3);
+  ASSERT_EQ(again.size(), 5u);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(cv::norm(again[i], b[i], cv::NORM_INF), 0) << i;
+  EXPECT_EQ(three.size(), 3u);
+}
+
 TEST(VideoFile, AFrameThatDoesNotDecodeIsSkippedAndCounted) {
   test::TempDir dir;
   const fs::path path = WriteVideo(dir, "walk.avi", 20);
