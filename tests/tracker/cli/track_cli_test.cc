@@ -430,9 +430,14 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   const Result live = TrackVideos(dir.path() / "live", "--device fake:" + (clip / "cam0.avi").string() + camera);
   ASSERT_EQ(live.status, 0) << live.err;
   EXPECT_NE(live.err.find("gives 160x120 YUYV at 30 fps"), std::string::npos) << live.err;
-  EXPECT_NE(live.out.find("live: latency from capture to estimate"), std::string::npos) << live.out;
+  // Latency is told when frames came after the start's 15 (a slow machine, a sanitizer
+  // build, takes fewer of the camera's 20).
+  const size_t taken = Statuses(dir.path() / "live").size();
+  EXPECT_NE(live.out.find(taken > 15 ? "live: latency from capture to estimate" : "live: no latency measured"),
+            std::string::npos)
+      << live.out;
   EXPECT_NE(live.out.find("went away"), std::string::npos) << live.out;
-  EXPECT_GE(Statuses(dir.path() / "live").size(), 5u);
+  EXPECT_GE(taken, 5u);
 
   // A camera that goes away while the start still holds its frames: no latency to tell.
   const fs::path short_take = dir.path() / "short.avi";
