@@ -190,9 +190,9 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   };
   ceres::Problem problem;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(new PairCost{pairs[i], options.person_height_mm, options.head_radius_mm, options.foot_share}),
-        new ceres::HuberLoss(2.0), camera, &walker[pair_walker[i] * kWalkerParameters]);
+    auto* cost = new PairCost{pairs[i], options.person_height_mm, options.head_radius_mm, options.foot_share};
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(cost),
+                             new ceres::HuberLoss(2.0), camera, &walker[pair_walker[i] * kWalkerParameters]);
   }
   for (int w = 0; w < walkers; ++w) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<WalkerPrior, 2, kWalkerParameters>(new WalkerPrior{
@@ -301,8 +301,7 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
     double head_height = 0, miss = 0, depth = 1;
     const double* own = &walker[pair_walker[i] * kWalkerParameters];
     HeadOnVertical(camera, pairs[i], options.head_radius_mm * own[kWalkerHeight] / options.person_height_mm,
-                   own[kWalkerHeight] * options.foot_share, &head_height,
-                   &miss, &depth);
+                   own[kWalkerHeight] * options.foot_share, &head_height, &miss, &depth);
     line2 += std::pow((miss - own[kWalkerLean]) * focal / depth, 2);
     height2 += std::pow(head_height - own[kWalkerHeight], 2);
   }

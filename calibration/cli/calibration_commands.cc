@@ -64,17 +64,24 @@ const CLI::Validator kBoardSize(
     },
     "COLSxROWS");
 
+// The whole of `text` as a finite number, or nothing.
+std::optional<double> ParseNumber(const std::string& text) {
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
 // (CLI11's PositiveNumber would print its range up to DBL_MAX.)
 const CLI::Validator kPositiveMm(
     [](std::string& text) {
-      size_t used = 0;
-      double value = 0;
-      try {
-        value = std::stod(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      return used == text.size() && std::isfinite(value) && value > 0
+      const std::optional<double> value = ParseNumber(text);
+      return value && *value > 0
                  ? std::string()
                  : "expected a length in millimetres > 0, got '" + text + "'";
     },
@@ -299,14 +306,8 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
   calibrate->add_option("--person-height", a->person_height_m, "the walkers' mean height, metres")
       ->check(CLI::Validator(
           [](std::string& text) {
-            size_t used = 0;
-            double value = 0;
-            try {
-              value = std::stod(text, &used);
-            } catch (const std::exception&) {
-              used = 0;
-            }
-            return used == text.size() && value >= 1.0 && value <= 2.5
+            const std::optional<double> value = ParseNumber(text);
+            return value && *value >= 1.0 && *value <= 2.5
                        ? std::string()
                        : "expected the walkers' mean height in metres, 1.0-2.5 (e.g. 1.70), got '" + text + "'";
           },

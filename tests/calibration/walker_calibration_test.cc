@@ -57,9 +57,10 @@ bool SilhouetteTop(const Camera& camera, const Eigen::Vector3d& top, Eigen::Vect
   return any;
 }
 
-// Every walker on its walk, `frames` points each, heights drawn around 1700 +- 90 mm, a
-// round head's silhouette top and the foot point 15% of the height up, the head leaning forward along the walk by 2-6 degrees, the points given noise of
-// `noise_px`; points outside the image are dropped, as a blob touching the edge would be.
+// Every walker on its walk, `frames` points each, heights drawn around 1700 +- 90 mm: a
+// round head's silhouette top and the foot point 15% of the height up, the head leaning
+// forward along the walk by 2-6 degrees, the points given noise of `noise_px`; points
+// outside the image are dropped, as a blob touching the edge would be.
 std::vector<HeadFoot> Observe(const Camera& camera, const std::vector<Walk>& walks, int frames, double noise_px,
                               unsigned seed, double* mean_height = nullptr) {
   std::mt19937 random(seed);
@@ -78,7 +79,8 @@ std::vector<HeadFoot> Observe(const Camera& camera, const std::vector<Walk>& wal
       point.walker = static_cast<int>(w) * 7 + 3;  // any numbering
       // The foot point: the centroid of the legs' lowest 30%, 15% of the height up
       // (WalkerCalibrationOptions::foot_share).
-      if (!camera.Project(foot + Eigen::Vector3d(0, 0.15 * height, 0), &point.foot_px) || !SilhouetteTop(camera, foot + lean + Eigen::Vector3d(0, height, 0), &point.head_px))
+      if (!camera.Project(foot + Eigen::Vector3d(0, 0.15 * height, 0), &point.foot_px) ||
+          !SilhouetteTop(camera, foot + lean + Eigen::Vector3d(0, height, 0), &point.head_px))
         continue;
       auto inside = [&](const Eigen::Vector2d& p) {
         return p.x() > 0 && p.y() > 0 && p.x() < camera.width - 1 && p.y() < camera.height - 1;
