@@ -124,6 +124,15 @@ WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const 
   int walkers = 0;
   for (const std::string& video : request.videos) {
     const WalkerEvidence one = read_walkers({video, request.background, request.max_frames, request.fps});
+    // A fixed camera's foreground is its people: a few percent of the image (a walker a
+    // metre from a webcam, 10%). Most of it, most of the time, is a camera that moves.
+    constexpr double kMovingShare = 0.25;
+    if (one.foreground_share > kMovingShare) {
+      ThrowInputError("--walkers " + video, "half its frames are more than " +
+                                                std::to_string(std::lround(100 * one.foreground_share)) +
+                                                "% foreground: a moving camera (or changing light)? calibration from "
+                                                "walkers needs a fixed camera");
+    }
     if (evidence.width == 0) {
       evidence.width = one.width;
       evidence.height = one.height;

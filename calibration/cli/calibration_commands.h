@@ -28,6 +28,8 @@ struct WalkerEvidence {
   int frames = 0;
   double fps = 0;
   std::vector<HeadFoot> points;
+  double foreground_share = 0;  // the median over frames of the share of the image that is
+                                // foreground (a moving camera makes most of it so)
 };
 using ReadWalkers = std::function<WalkerEvidence(const WalkerVideo&)>;
 

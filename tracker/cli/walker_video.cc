@@ -1,6 +1,9 @@
 #include "tracker/cli/walker_video.h"
 
+#include <algorithm>
 #include <filesystem>
+
+#include <opencv2/core.hpp>
 
 #include "io/base/error.h"
 #include "io/cli/progress.h"
@@ -34,8 +37,12 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   ProgressLine line("walkers", 0.5);
   const int total = source->NumFrames();
   Frame frame;
+  std::vector<double> shares;
   while (source->Next(&frame)) {
-    if (!frame.dropped) finder.Add(frame.masks.front());
+    if (frame.dropped) continue;
+    const cv::Mat& mask = frame.masks.front();
+    finder.Add(mask);
+    shares.push_back(static_cast<double>(cv::countNonZero(mask)) / mask.total());
     line.Update(frame.index + 1, total, "frames", "finding heads and feet");
   }
   line.Finish();
@@ -45,6 +52,10 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   evidence.frames = finder.frames();
   evidence.fps = source->fps();
   evidence.points = finder.Points();
+  if (!shares.empty()) {
+    std::nth_element(shares.begin(), shares.begin() + shares.size() / 2, shares.end());
+    evidence.foreground_share = shares[shares.size() / 2];
+  }
   return evidence;
 }
 

@@ -115,6 +115,25 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
   cv::VideoCapture video(clips_[0] + "/cam0.avi");
   cv::Mat image;
   for (int k = 0; video.read(image); ++k) ASSERT_TRUE(cv::imwrite((frames / cv::format("%06d.png", k)).string(), image));
+  // Nobody: the empty scene, 60 frames. A moving camera: the walk's video panned 120 px
+  // across its frames.
+  const fs::path nobody = dir_->path() / "nobody.avi", pan = dir_->path() / "pan.avi";
+  {
+    const cv::Mat scene = cv::imread(clips_[0] + "/background/cam0.png");
+    ASSERT_FALSE(scene.empty());
+    cv::VideoWriter empty(nobody.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, scene.size());
+    for (int k = 0; k < 60; ++k) empty.write(scene);
+    cv::VideoCapture walk(clips_[0] + "/cam0.avi");
+    std::vector<cv::Mat> shots;
+    while (walk.read(image)) shots.push_back(image.clone());
+    ASSERT_FALSE(shots.empty());
+    cv::VideoWriter panned(pan.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30,
+                           cv::Size(shots[0].cols - 120, shots[0].rows));
+    for (size_t k = 0; k < shots.size(); ++k) {
+      const int x = static_cast<int>(120 * k / shots.size());
+      panned.write(shots[k](cv::Rect(x, 0, shots[k].cols - 120, shots[k].rows)).clone());
+    }
+  }
   const std::string o = " --out " + out.string();
   struct Case {
     std::string arguments;
@@ -133,6 +152,8 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
       {"calibrate" + o, 1, "--walkers VIDEO"},
       {"calibrate --walkers " + frames.string() + o, 1, "--fps"},
       {"calibrate --walkers " + frames.string() + " --fps 30" + o, 1, "do not determine"},
+      {"calibrate --walkers " + nobody.string() + o, 1, "got 0"},
+      {"calibrate --walkers " + pan.string() + o, 1, "needs a fixed camera"},
       // Tracking with the camera calibrated first: the calibration's refusal stops it.
       {"track --model " + (dir_->path() / "none.json").string() + " --video " + clips_[0] + "/cam0.avi" +
            " --calibrate-from-walkers --out " + (dir_->path() / "track").string(),
