@@ -287,7 +287,6 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   auto sd = [&](int i) { return std::sqrt(std::max(0.0, c[i * kCameraParameters + i] * scale)); };
 
   WalkerCalibration result;
-  result.points = static_cast<int>(pairs.size());
   result.walkers = walkers;
   const double focal = std::exp(camera[kLogFocal]);
   const double camera_height = std::exp(camera[kLogHeight]);

@@ -97,7 +97,7 @@ struct Estimate {
 struct WalkerCalibration {
   Camera camera;  // placed as above, named "cam0"
   Estimate focal_px, height_mm, tilt_deg, roll_deg;
-  int points = 0, walkers = 0;
+  int walkers = 0;
   double rms_line_px = 0;       // the head rays' sideways miss, px
   double rms_height_mm = 0;     // heads around their walker's height, mm
   std::vector<double> walker_heights_mm;  // each walker's height found, in walker order

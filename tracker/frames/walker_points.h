@@ -59,8 +59,6 @@ class WalkerPointFinder {
   // Every walker's points seen in at least min_frames frames, walkers numbered from 0.
   std::vector<HeadFoot> Points() const;
   int frames() const { return frame_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
 
  private:
   struct Track {

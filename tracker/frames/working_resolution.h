@@ -57,8 +57,6 @@ class WorkingResolutionSource : public FrameSource {
   // The next frame: masks at the working resolution, images as they came.
   bool Next(Frame* frame) override;
 
-  FrameSource* inner() const { return inner_.get(); }
-
  private:
   void Scale(Frame* frame) const;
 
