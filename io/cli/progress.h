@@ -3,7 +3,8 @@
 // rewritten in place on a terminal, else one line per report. Reports come at most every
 // `interval_s` seconds (the first and the last always). Into a log (not a terminal), a job
 // shows nothing in its first `quiet_s` seconds, so short runs and one-line errors stay
-// clean.
+// clean. The rate and the time left count from the first report, so the setup before it
+// does not count as work.
 #pragma once
 
 #include <chrono>
@@ -30,7 +31,9 @@ class ProgressLine {
   double quiet_s_;
   bool tty_;
   bool shown_ = false;
-  std::chrono::steady_clock::time_point start_, last_;
+  bool counting_ = false;  // the first report came: the rate counts from it
+  double first_done_ = 0;
+  std::chrono::steady_clock::time_point start_, last_, first_;
 };
 
 }  // namespace jgpm::cli
