@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,7 @@ struct TrackArguments {
   bool calibrate_from_walkers = false;
   bool full_resolution = false;
   double person_height_m = 1.70;
+  std::string person = "auto";
 };
 
 // The first Ctrl-C (or SIGTERM) ends tracking and what was tracked is written; the
@@ -83,9 +85,31 @@ std::vector<int> ParseCameraList(const std::string& text) {
   return cameras;
 }
 
+// --person: "auto" or "U,V" (a pixel of the first camera's full-size image).
+PersonPreference ParsePersonOption(const std::string& text) {
+  PersonPreference person;
+  if (text == "auto") return person;
+  const size_t comma = text.find(',');
+  double u = 0, v = 0;
+  char* end = nullptr;
+  bool ok = comma != std::string::npos;
+  if (ok) {
+    const std::string first = text.substr(0, comma), second = text.substr(comma + 1);
+    u = std::strtod(first.c_str(), &end);
+    ok = !first.empty() && *end == '\0';
+    v = std::strtod(second.c_str(), &end);
+    ok = ok && !second.empty() && *end == '\0' && std::isfinite(u) && std::isfinite(v) && u >= 0 && v >= 0;
+  }
+  if (!ok) ThrowInputError("--person " + text, "expected auto or a pixel X,Y of the first camera, e.g. 320,240");
+  person.kind = PersonPreference::Kind::kNearPixel;
+  person.pixel = Eigen::Vector2d(u, v);
+  return person;
+}
+
 void RunTrack(TrackArguments a) {
   FrameSourceSpec& spec = a.job.source;
   if (!a.cameras.empty()) spec.clip_cameras = ParseCameraList(a.cameras);
+  a.job.tracker.person = ParsePersonOption(a.person);
   if (!a.size.empty()) ParseSizeOption(a.size, &spec.device_width, &spec.device_height);
   spec.clip_foreground = !spec.clip.empty() && !a.foreground.empty();
   spec.foreground.method = a.foreground == "knn" ? ForegroundMethod::kKnn : ForegroundMethod::kMog2;
@@ -337,6 +361,11 @@ void AddTrackCommands(CLI::App& app) {
   track->add_option("--max-seconds", a->job.max_seconds, "stop after this long and write what was tracked (0: no limit)")
       ->check(CLI::NonNegativeNumber);
   track->add_flag("--show", a->show, "show the overlays live in a window (when there is a display)");
+  track->add_option("--person", a->person,
+                    "who, when several people are in view: auto (of those in the first frame, the one seen in most "
+                    "of the start's frames) or X,Y (the one nearest that pixel of the first camera's first frame); "
+                    "kept by the tracker's prediction")
+      ->capture_default_str();
   track->add_option("--asf", a->job.asf, "the subject's skeleton, when known: poses are placed on it (size not estimated)")
       ->check(CLI::ExistingFile);
   track->add_option("--out", a->job.out, "new (or empty) folder for poses.json, tracked.bvh/.amc, overlays, track.png")

@@ -114,9 +114,8 @@ BlobEnds FindBlobEnds(const cv::Mat& labels, int label, const cv::Rect& box) {
 
 }  // namespace
 
-PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks, int min_blob_px) {
-  PersonSighting sighting;
-  sighting.boxes.assign(cameras.size(), cv::Rect());
+std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
+                                         int min_blob_px) {
   // Per camera, every blob big enough, with where it stands and how tall it is there.
   struct Candidate {
     int area;
@@ -197,53 +196,101 @@ PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vecto
     for (auto& own : candidates)
       own.erase(std::remove_if(own.begin(), own.end(), [](const Candidate& q) { return !q.feet; }), own.end());
   }
-  // The person's place is the candidate place most cameras agree on (a candidate within
-  // 1 m), ties going to the larger total blob area: a ghost blob that only one camera sees
-  // cannot outvote cameras that agree, even when it is that camera's largest blob.
+  // One person at a time, the best evidence first: the candidate place most cameras
+  // agree on (a candidate within 1 m), ties going to the larger total blob area, so a
+  // ghost blob that only one camera sees cannot outvote cameras that agree, even when it
+  // is that camera's largest blob. Each camera's blob nearest that place (within 1 m) is
+  // that person's, and is not looked at again.
   constexpr double kAgreeMm = 1000;
-  Eigen::Vector2d centre;
-  int best_cameras = 0;
-  long best_area = -1;
-  for (const auto& own : candidates) {
-    for (const Candidate& hypothesis : own) {
-      int agreeing = 0;
-      long area = 0;
-      for (const auto& other : candidates) {
-        int largest = 0;
-        for (const Candidate& q : other)
-          if ((q.floor - hypothesis.floor).norm() < kAgreeMm) largest = std::max(largest, q.area);
-        agreeing += largest > 0;
-        area += largest;
+  std::vector<PersonSighting> people;
+  while (true) {
+    Eigen::Vector2d centre;
+    int best_cameras = 0;
+    long best_area = -1;
+    for (const auto& own : candidates) {
+      for (const Candidate& hypothesis : own) {
+        int agreeing = 0;
+        long area = 0;
+        for (const auto& other : candidates) {
+          int largest = 0;
+          for (const Candidate& q : other)
+            if ((q.floor - hypothesis.floor).norm() < kAgreeMm) largest = std::max(largest, q.area);
+          agreeing += largest > 0;
+          area += largest;
+        }
+        if (agreeing > best_cameras || (agreeing == best_cameras && area > best_area))
+          best_cameras = agreeing, best_area = area, centre = hypothesis.floor;
       }
-      if (agreeing > best_cameras || (agreeing == best_cameras && area > best_area))
-        best_cameras = agreeing, best_area = area, centre = hypothesis.floor;
     }
-  }
-  if (best_cameras == 0) return sighting;
-  std::vector<double> agreeing_x, agreeing_z, heights, guessed_x, guessed_z;
-  for (size_t c = 0; c < candidates.size(); ++c) {
-    // The blob nearest that place, if near enough.
-    int best = -1;
-    double nearest = kAgreeMm;
-    for (size_t k = 0; k < candidates[c].size(); ++k) {
-      const double d = (candidates[c][k].floor - centre).norm();
-      if (d < nearest) nearest = d, best = static_cast<int>(k);
+    if (best_cameras == 0) break;
+    PersonSighting sighting;
+    sighting.boxes.assign(cameras.size(), cv::Rect());
+    sighting.areas.assign(cameras.size(), 0);
+    std::vector<double> agreeing_x, agreeing_z, heights, guessed_x, guessed_z;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+      // The blob nearest that place, if near enough.
+      int best = -1;
+      double nearest = kAgreeMm;
+      for (size_t k = 0; k < candidates[c].size(); ++k) {
+        const double d = (candidates[c][k].floor - centre).norm();
+        if (d < nearest) nearest = d, best = static_cast<int>(k);
+      }
+      if (best < 0) continue;
+      const Candidate p = candidates[c][best];
+      candidates[c].erase(candidates[c].begin() + best);
+      sighting.boxes[c] = p.box;
+      sighting.areas[c] = p.area;
+      (p.feet ? agreeing_x : guessed_x).push_back(p.floor.x());
+      (p.feet ? agreeing_z : guessed_z).push_back(p.floor.y());
+      if (p.height > 0) heights.push_back(p.height);
     }
-    if (best < 0) continue;
-    const Candidate& p = candidates[c][best];
-    sighting.boxes[c] = p.box;
-    (p.feet ? agreeing_x : guessed_x).push_back(p.floor.x());
-    (p.feet ? agreeing_z : guessed_z).push_back(p.floor.y());
-    if (p.height > 0) heights.push_back(p.height);
+    // Places read from feet when any camera saw them; the adult-height guesses otherwise.
+    sighting.feet_seen = !agreeing_x.empty();
+    sighting.cameras = static_cast<int>(agreeing_x.size() + guessed_x.size());
+    if (!sighting.feet_seen) agreeing_x.swap(guessed_x), agreeing_z.swap(guessed_z);
+    if (agreeing_x.empty()) break;  // cannot happen: the centre is some camera's blob
+    sighting.found = true;
+    sighting.floor_mm = Eigen::Vector2d(Median(agreeing_x), Median(agreeing_z));
+    sighting.height_mm = heights.empty() ? 0 : Median(heights);
+    people.push_back(std::move(sighting));
   }
-  // Places read from feet when any camera saw them; the adult-height guesses otherwise.
-  sighting.feet_seen = !agreeing_x.empty();
-  sighting.cameras = static_cast<int>(agreeing_x.size() + guessed_x.size());
-  if (!sighting.feet_seen) agreeing_x.swap(guessed_x), agreeing_z.swap(guessed_z);
-  if (agreeing_x.empty()) return sighting;
-  sighting.found = true;
-  sighting.floor_mm = Eigen::Vector2d(Median(agreeing_x), Median(agreeing_z));
-  sighting.height_mm = heights.empty() ? 0 : Median(heights);
+  return people;
+}
+
+PersonSighting ChoosePerson(const std::vector<PersonSighting>& people, const PersonPreference& prefer) {
+  const PersonSighting* chosen = nullptr;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const PersonSighting& person : people) {
+    double d = 0;
+    switch (prefer.kind) {
+      case PersonPreference::Kind::kStrongest:
+        return person;
+      case PersonPreference::Kind::kNearPlace:
+        d = (person.floor_mm - prefer.floor_mm).norm();
+        if (d > prefer.within_mm) continue;
+        break;
+      case PersonPreference::Kind::kNearPixel: {
+        if (prefer.camera < 0 || prefer.camera >= static_cast<int>(person.boxes.size())) continue;
+        const cv::Rect& box = person.boxes[prefer.camera];
+        if (box.empty()) continue;
+        // From the pixel to the box (0 inside it).
+        const double du = std::max({box.x - prefer.pixel.x(), 0.0, prefer.pixel.x() - (box.x + box.width)});
+        const double dv = std::max({box.y - prefer.pixel.y(), 0.0, prefer.pixel.y() - (box.y + box.height)});
+        d = std::hypot(du, dv);
+        break;
+      }
+    }
+    if (d < nearest) nearest = d, chosen = &person;
+  }
+  if (chosen) return *chosen;
+  return PersonSighting();
+}
+
+PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks, int min_blob_px,
+                            const PersonPreference& prefer) {
+  PersonSighting sighting = ChoosePerson(LocatePeople(cameras, masks, min_blob_px), prefer);
+  sighting.boxes.resize(cameras.size());
+  sighting.areas.resize(cameras.size());
   return sighting;
 }
 

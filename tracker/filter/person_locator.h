@@ -11,8 +11,12 @@
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
 // clutter in the air is) are passed over; with several cameras the place that most cameras'
 // blobs agree on (within 1 m) is taken, and the answer is the median of those blobs.
+// Several people: the same, again and again, over the blobs not yet taken, so each blob is
+// one person's; the caller chooses among them (the strongest, the nearest to a place where
+// a tracked person is expected, or to a pixel a user pointed at).
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,10 +35,40 @@ struct PersonSighting {
   bool feet_seen = false;                              // the place is read from feet (else
                                                        // from the head at an adult's height)
   std::vector<cv::Rect> boxes;                         // per camera: the blob's box (empty if none)
+  std::vector<int> areas;                              // and its pixels (0 if none)
 };
 
-// Blobs smaller than `min_blob_px` are not a person.
+// Every person the masks show, the best evidence first (the most cameras agreeing, then
+// the largest blobs); each camera's blob is one person's. Blobs smaller than `min_blob_px`
+// are not a person.
+std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
+                                         int min_blob_px = 60);
+
+// Which one, when several people are seen.
+struct PersonPreference {
+  enum class Kind {
+    kStrongest,  // the best evidence (the first of LocatePeople)
+    kNearPlace,  // the nearest to floor_mm, if within within_mm
+    kNearPixel,  // the one whose box in `camera` is nearest `pixel` (0 inside it)
+  };
+  Kind kind = Kind::kStrongest;
+  Eigen::Vector2d floor_mm = Eigen::Vector2d::Zero();
+  double within_mm = std::numeric_limits<double>::infinity();
+  int camera = 0;
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+
+  static PersonPreference Near(const Eigen::Vector2d& floor_mm, double within_mm) {
+    PersonPreference p;
+    p.kind = Kind::kNearPlace, p.floor_mm = floor_mm, p.within_mm = within_mm;
+    return p;
+  }
+};
+
+// The preferred one of `people` (found false when none qualifies).
+PersonSighting ChoosePerson(const std::vector<PersonSighting>& people, const PersonPreference& prefer);
+
+// The preferred one of LocatePeople.
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
-                            int min_blob_px = 60);
+                            int min_blob_px = 60, const PersonPreference& prefer = {});
 
 }  // namespace jgpm

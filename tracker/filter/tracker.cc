@@ -52,6 +52,9 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0)) problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
+  else if (person.kind == PersonPreference::Kind::kNearPlace) problem = "person: the strongest or nearest a pixel";
+  else if (person.kind == PersonPreference::Kind::kNearPixel && !(person.camera >= 0 && person.pixel.allFinite()))
+    problem = "person: a camera index >= 0 and a finite pixel";
   if (problem) {
     if (why) *why = problem;  // `why` may be null
     return false;
@@ -88,6 +91,10 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
   std::string why;
   if (!options.Check(&why)) ThrowInputError("tracking options", why);
   if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
+  if (options.person.camera >= static_cast<int>(cameras.size()))
+    ThrowInputError("person", "camera " + std::to_string(options.person.camera) + " of " +
+                                  std::to_string(cameras.size()));
+  next_choice_ = options.person;
   if (options.space == StateSpace::kJointSpace) {
     state_model_ = std::make_unique<JointSpaceStateModel>(model, options.known_size);
   } else {
@@ -131,14 +138,44 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
 
 Tracker::~Tracker() = default;
 
-bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess) const {
-  std::vector<PersonSighting> sightings;
+bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer,
+                    std::vector<cv::Rect>* first_boxes) const {
+  std::vector<std::vector<PersonSighting>> people;
   std::vector<double> times;
   for (const Frame& f : frames) {
     if (f.dropped) continue;
-    sightings.push_back(LocatePerson(cameras_, f.masks));
+    people.push_back(LocatePeople(cameras_, f.masks));
     times.push_back(f.time_s - frames.front().time_s);
   }
+  // The person followed from a first sighting: in each frame the one nearest where they
+  // were last found, within the locator's agreement (1 m) and a brisk walk (2 m/s) since.
+  const auto follow = [&](size_t first, const PersonSighting& from) {
+    std::vector<PersonSighting> chain(people.size());
+    chain[first] = from;
+    for (size_t i = first + 1, last = first; i < people.size(); ++i) {
+      chain[i] = ChoosePerson(people[i], PersonPreference::Near(chain[last].floor_mm,
+                                                                1000 + 2000 * (times[i] - times[last])));
+      if (chain[i].found) last = i;
+    }
+    return chain;
+  };
+  size_t first = 0;
+  while (first < people.size() && people[first].empty()) ++first;
+  if (first == people.size()) return false;
+  std::vector<PersonSighting> sightings;
+  if (prefer.kind == PersonPreference::Kind::kStrongest) {
+    int most = -1;
+    for (const PersonSighting& candidate : people[first]) {
+      std::vector<PersonSighting> chain = follow(first, candidate);
+      const int seen = static_cast<int>(std::count_if(chain.begin(), chain.end(), [](const PersonSighting& s) { return s.found; }));
+      if (seen > most) most = seen, sightings = std::move(chain);
+    }
+  } else {
+    const PersonSighting chosen = ChoosePerson(people[first], prefer);
+    if (!chosen.found) return false;
+    sightings = follow(first, chosen);
+  }
+  if (first_boxes) *first_boxes = sightings[first].boxes;
   // Where the person was at the first frame: a straight walk fitted through the places
   // found (least squares in time), so a first frame where nobody was found still starts
   // in the right place.
@@ -193,6 +230,8 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   // A start that knows the pose (--init truth) knows which leg is forward.
   frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
   bad_frames_ = 0;
+  out_of_view_ = 0;
+  last_drawn_.clear();
   hidden_ = false;
   start_boxes_.clear();
   last_good_time_s_ = -1e9;  // nothing to hold to until a good frame
@@ -200,14 +239,10 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
 
 bool Tracker::StartFromFrames(const std::vector<Frame>& frames) {
   InitialGuess guess;
-  if (!Guess(frames, &guess)) return false;
+  std::vector<cv::Rect> boxes;
+  if (!Guess(frames, &guess, next_choice_, &boxes)) return false;
   StartAt(guess, frames.front().index);
-  // Where to look at the start: the first frame's blobs.
-  for (const Frame& f : frames) {
-    if (f.dropped) continue;
-    start_boxes_ = LocatePerson(cameras_, f.masks).boxes;
-    break;
-  }
+  start_boxes_ = boxes;  // where to look at the start: the person's first blobs
   return true;
 }
 
@@ -291,14 +326,19 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // Where the masks alone put the person: looked for once a frame, when first needed.
   std::optional<PersonSighting> sighting;
   const auto located = [&]() -> const PersonSighting& {
-    if (!sighting) sighting = LocatePerson(cameras_, frame.masks);
+    if (!sighting) sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm, 1e300));
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
     const PersonSighting& seen = located();
     const double away = (seen.floor_mm - predicted_floor_mm).norm();
     const double reach = options_.relocate_distance_mm + 2000 * options_.relocate_every * std::max(dt, 1.0 / 60);
-    if (seen.found && seen.feet_seen && away > options_.relocate_distance_mm && away <= reach) {
+    // A blob with far more pixels than the estimate draws there holds someone else too
+    // (two walkers passing): its place is neither's.
+    bool merged = false;
+    for (size_t c = 0; c < last_drawn_.size() && c < seen.areas.size(); ++c)
+      merged = merged || (last_drawn_[c] > 0 && seen.areas[c] > options_.relocate_merged * last_drawn_[c]);
+    if (seen.found && seen.feet_seen && !merged && away > options_.relocate_distance_mm && away <= reach) {
       filter_->Relocate(seen.floor_mm, 120, options_.relocate_share, frame.index);
     }
   }
@@ -413,6 +453,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // estimate is out of its view says nothing. When the estimate explains the views
   // badly, is anyone there at all? A person-sized blob standing on the floor in some
   // camera, not a segmentation's specks (LocatePerson).
+  last_drawn_.clear();
+  for (const CameraScore& c : out.cameras) last_drawn_.push_back(c.model_px);
   PersonSighting seen;
   if (out.MeanIou() < options_.lost_iou) {
     seen = located();
@@ -423,7 +465,20 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   const bool nobody = bad_frames_ > 0 && !seen.found;
   bool evidence = false;  // some camera sees someone where expected, or draws the estimate
-  for (const CameraScore& c : out.cameras) evidence = evidence || c.observed_px > 0 || c.model_px > 0;
+  bool drawn = false;     // some camera draws the estimate
+  for (const CameraScore& c : out.cameras) {
+    evidence = evidence || c.observed_px > 0 || c.model_px > 0;
+    drawn = drawn || c.model_px > 0;
+  }
+  // Drawn in no camera for lost_frames frames: the person has left every view, and
+  // whoever is seen (the nearest to where they were) is tracked instead. A prediction
+  // walking on out of view while others walk by in it tells nobody anything.
+  out_of_view_ = drawn ? 0 : out_of_view_ + 1;
+  // A restart looks first where the person was last seen and explained well.
+  if (drawn && bad_frames_ == 0)
+    next_choice_ = PersonPreference::Near(Eigen::Vector2d(out.joints_mm(0, 0), out.joints_mm(2, 0)), 1e300);
+  const bool left = out_of_view_ >= options_.lost_frames;
+  if (left && !seen.found) seen = located();
   // Someone seen far from where the dynamics put the person is someone or something else:
   // the person is hidden (an occluder, a failed segmentation), and is predicted, not
   // restarted on it, for up to max_hidden_s.
@@ -432,11 +487,11 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   if (bad_frames_ >= options_.lost_frames && elsewhere) {
     out.status = TrackStatus::kPredicted;
     hidden_ = true;
-  } else if (nobody || bad_frames_ >= options_.lost_frames) {
+  } else if (nobody || bad_frames_ >= options_.lost_frames || (left && seen.found)) {
     out.status = TrackStatus::kLost;
     // Start again from the masks as soon as someone is seen.
     started_ = false;
-    if (!nobody) StartFromFrames({frame});
+    if (seen.found) StartFromFrames({frame});
   } else {
     // Out of every view and seen by none: the estimate is the prediction.
     out.status = evidence ? TrackStatus::kTracked : TrackStatus::kPredicted;

@@ -57,6 +57,7 @@
 #include "tracker/filter/annealed_filter.h"
 #include "tracker/filter/body_shape.h"
 #include "tracker/filter/likelihood.h"
+#include "tracker/filter/person_locator.h"
 #include "tracker/filter/pose_refiner.h"
 #include "tracker/filter/thread_pool.h"
 #include "tracker/filter/view_alignment.h"
@@ -102,10 +103,18 @@ struct TrackerOptions {
   int relocate_every = 5;
   double relocate_distance_mm = 300;
   int relocate_share = 10;
+  double relocate_merged = 1.6;  // not to a blob this many times the estimate's drawn area
   // A person explained badly while someone is seen where they could not have walked to is
   // taken for hidden (predicted, not restarted on what is seen) for at most this long: a
   // walker passes behind a pillar or a parked car in a second or two.
   double max_hidden_s = 2;
+  // Who, when several people are in view: the first start takes `person` (kStrongest: of
+  // those seen in the start's first frame, the one found again in the most of its frames,
+  // ties to the best evidence; kNearPixel: the blob nearest that pixel in the first frame).
+  // From then on the person is the one nearest where the dynamics put them (the second
+  // look, a hidden person's return, a loss), and a restart takes whoever is nearest where
+  // they were last explained well: a walker passing another keeps their place.
+  PersonPreference person;
 
   bool Check(std::string* why) const;
 };
@@ -156,6 +165,8 @@ class Tracker {
   void StartAt(const InitialGuess& guess, int frame = 0);
   // Looks at frames (the first few of a source) for the person; starts at the next frame
   // when found. False when nobody is seen in any of them.
+  // The person is chosen as options().person says at the first start, and nearest where
+  // they were last explained well at a restart.
   bool StartFromFrames(const std::vector<Frame>& frames);
   // One frame.
   TrackedFrame Step(const Frame& frame);
@@ -165,7 +176,11 @@ class Tracker {
 
   // The guess the masks of a few frames give (floor place, height -> size, travel ->
   // heading); found false when nobody is seen.
-  bool Guess(const std::vector<Frame>& frames, InitialGuess* guess) const;
+  // `prefer` chooses the person in the first frame (kStrongest: see TrackerOptions::person);
+  // in the others, the one nearest where they were last found. `first_boxes` (may be
+  // null) gets their boxes in the first frame that saw them.
+  bool Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer = {},
+             std::vector<cv::Rect>* first_boxes = nullptr) const;
 
  private:
   std::vector<cv::Rect> Regions(const std::vector<Frame>* frames) const;
@@ -192,9 +207,12 @@ class Tracker {
   ViewAlignment alignment_;
   BodyShape shape_;
   bool started_ = false, fresh_ = false;
+  PersonPreference next_choice_;  // whom the next start takes
   std::vector<cv::Rect> start_boxes_;
   double last_time_s_ = 0;
   int bad_frames_ = 0;
+  int out_of_view_ = 0;  // frames in a row drawn in no camera
+  std::vector<int> last_drawn_;  // the last frame's estimate's pixels per camera
   bool hidden_ = false;  // explained badly while someone is seen elsewhere: predicted
   double last_good_time_s_ = -1e9;  // the last frame explained well
   int frames_since_start_ = 0;

@@ -155,6 +155,20 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
 
+  // A chosen pixel is the full-size image's; the tracker sees the working resolution.
+  if (tracker_options.person.kind == PersonPreference::Kind::kNearPixel) {
+    const int c = tracker_options.person.camera;
+    if (c >= static_cast<int>(source->scales().size()))
+      ThrowInputError("--person", "camera " + std::to_string(c) + " of " + std::to_string(source->scales().size()));
+    const Camera& full = source->full_cameras()[c];
+    const Eigen::Vector2d& p = tracker_options.person.pixel;
+    if (!(p.x() < full.width && p.y() < full.height)) {
+      ThrowInputError("--person", "pixel " + std::to_string(static_cast<int>(p.x())) + "," +
+                                      std::to_string(static_cast<int>(p.y())) + " is outside the first camera's " +
+                                      std::to_string(full.width) + "x" + std::to_string(full.height) + " image");
+    }
+    tracker_options.person.pixel = (p.array() + 0.5) * source->scales()[c] - 0.5;
+  }
   Tracker tracker(*model, source->cameras(), tracker_options);
   TrackJobResult result;
   TrackRun& run = result.run;

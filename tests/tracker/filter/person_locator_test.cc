@@ -304,5 +304,43 @@ TEST(PersonLocator, NobodyInViewIsNotFound) {
   EXPECT_LT((seen.floor_mm - v.root_mm).norm(), kOneCameraFloorBoundMm);
 }
 
+
+// Two people in one camera's view (the walk's first and last frames, one mask): both are
+// found, each within the one-camera bound of its own root, the larger (nearer) blob
+// first; a place or a pixel chooses between them, and a place with nobody near enough
+// chooses nobody.
+TEST(PersonLocator, FindsEachOfTwoPeopleAndChoosesByPlaceOrPixel) {
+  const Scene& s = Walk();
+  const View &a = s.views.front(), &b = s.views.back();
+  const int c = 0;  // the side camera: the two are apart in its image
+  cv::Mat both;
+  cv::bitwise_or(a.masks[c], b.masks[c], both);
+  const std::vector<Camera> one = {s.cameras[c]};
+  const std::vector<PersonSighting> people = LocatePeople(one, {both});
+  ASSERT_EQ(people.size(), 2u);
+  const bool a_first = cv::countNonZero(a.masks[c]) >= cv::countNonZero(b.masks[c]);
+  const View& first = a_first ? a : b;
+  const View& second = a_first ? b : a;
+  std::printf("two people %.0f mm apart: found %.0f and %.0f mm from their roots\n", (a.root_mm - b.root_mm).norm(),
+              (people[0].floor_mm - first.root_mm).norm(), (people[1].floor_mm - second.root_mm).norm());
+  EXPECT_LT((people[0].floor_mm - first.root_mm).norm(), kOneCameraFloorBoundMm);
+  EXPECT_LT((people[1].floor_mm - second.root_mm).norm(), kOneCameraFloorBoundMm);
+  EXPECT_EQ(people[0].boxes[0], cv::boundingRect(first.masks[c]));
+  EXPECT_EQ(people[1].boxes[0], cv::boundingRect(second.masks[c]));
+  EXPECT_GT(people[0].areas[0], 0);
+
+  EXPECT_EQ(LocatePerson(one, {both}).floor_mm, people[0].floor_mm);  // the strongest
+  EXPECT_EQ(LocatePerson(one, {both}, 60, PersonPreference::Near(second.root_mm, 1000)).floor_mm, people[1].floor_mm);
+  PersonPreference pixel;
+  pixel.kind = PersonPreference::Kind::kNearPixel;
+  const cv::Rect box = cv::boundingRect(second.masks[c]);
+  pixel.pixel = Eigen::Vector2d(box.x + box.width + 3, box.y + box.height / 2);  // just right of it
+  EXPECT_EQ(LocatePerson(one, {both}, 60, pixel).floor_mm, people[1].floor_mm);
+  const Eigen::Vector2d away = 0.5 * (a.root_mm + b.root_mm);
+  const double nearest = std::min((people[0].floor_mm - away).norm(), (people[1].floor_mm - away).norm());
+  EXPECT_FALSE(LocatePerson(one, {both}, 60, PersonPreference::Near(away, 0.9 * nearest)).found);
+  EXPECT_TRUE(LocatePerson(one, {both}, 60, PersonPreference::Near(away, 1.1 * nearest)).found);
+}
+
 }  // namespace
 }  // namespace jgpm
