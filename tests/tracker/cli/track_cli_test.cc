@@ -245,6 +245,10 @@ TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
   ExpectRefused(Track(f.clip, out, "", dir.path() / "none.json"), out, "none.json", "missing model");
   // No clip there.
   ExpectRefused(Track(dir.path() / "no-clip", out), out, "no-clip", "missing clip");
+  // A person that is not auto or a pixel, and a pixel outside the first camera's image.
+  ExpectRefused(Track(f.clip, out, "--person left"), out, "--person left", "--person left");
+  ExpectRefused(Track(f.clip, out, "--person 10,nan"), out, "--person 10,nan", "--person 10,nan");
+  ExpectRefused(Track(f.clip, out, "--person 5000,10"), out, "outside the first camera", "--person 5000,10");
 
   // An output folder that is in use: refused, left as it was.
   fs::create_directories(dir.path() / "full");
