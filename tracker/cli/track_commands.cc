@@ -179,6 +179,10 @@ void RunTrack(TrackArguments a) {
   std::printf("with reading the frames%s: %.1f frames/s\n",
               a.job.source.clip.empty() || a.job.source.clip_foreground ? " and background subtraction" : "",
               result.loop_seconds > 0 ? n / result.loop_seconds : 0.0);
+  std::printf("the whole run: %.1f s of wall time for %.1f s of tracking (%.2fx: reading the model and its pose "
+              "table, decoding, background subtraction and writing the outputs)\n",
+              result.wall_seconds, run.tracking_seconds,
+              run.tracking_seconds > 0 ? result.wall_seconds / run.tracking_seconds : 0.0);
   if (result.errors) {
     for (const auto& [name, e] : {std::pair<const char*, const TrackErrors&>{"14 joints (bodytrack)", result.errors->bodytrack14},
                                   {"17 gait joints", result.errors->gait17}}) {

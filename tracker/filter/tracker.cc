@@ -74,7 +74,8 @@ double TrackedFrame::MeanIou() const {
   return counted > 0 ? sum / counted : 1.0;
 }
 
-Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options)
+Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options,
+                 std::shared_ptr<const PoseTable> table)
     : model_(model),
       cameras_(cameras),
       options_(options),
@@ -98,9 +99,12 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
   if (options.space == StateSpace::kJointSpace) {
     state_model_ = std::make_unique<JointSpaceStateModel>(model, options.known_size);
   } else {
-    PoseTableOptions table = options.table;
-    table.threads = options.threads;
-    table_ = std::make_unique<PoseTable>(model, table);
+    PoseTableOptions table_options = options.table;
+    table_options.threads = options.threads;
+    table_ = table ? std::move(table) : std::make_shared<const PoseTable>(model, table_options);
+    if (table_->manifold() != model.HasManifold() || table_->NumBones() != static_cast<int>(model.skeleton().bones.size()) ||
+        table_->NumChannels() != model.NumChannels())
+      ThrowInputError("pose table", "made for another model");
     if (model.HasManifold()) {
       ManifoldDynamics dynamics;
       if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;

@@ -148,8 +148,11 @@ struct TrackedFrame {
 
 class Tracker {
  public:
-  // InputError for bad options or a model the state space cannot use.
-  Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options);
+  // InputError for bad options or a model the state space cannot use. `table`: the model's
+  // pose table made with options.table, when at hand (tracker/run/pose_table_cache.h);
+  // else it is built.
+  Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options,
+          std::shared_ptr<const PoseTable> table = nullptr);
   ~Tracker();
 
   const StateModel& state_model() const { return *state_model_; }
@@ -197,7 +200,7 @@ class Tracker {
   std::vector<Camera> cameras_;
   TrackerOptions options_;
   ThreadPool pool_;
-  std::unique_ptr<PoseTable> table_;
+  std::shared_ptr<const PoseTable> table_;
   std::unique_ptr<StateModel> state_model_;
   BodyModel body_;
   SilhouetteLikelihood likelihood_;

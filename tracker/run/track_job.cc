@@ -22,6 +22,7 @@
 #include "prior/model/model_file.h"
 #include "tracker/frames/clip_source.h"
 #include "tracker/frames/video_frame_source.h"
+#include "tracker/run/pose_table_cache.h"
 
 namespace jgpm {
 namespace fs = std::filesystem;
@@ -140,6 +141,10 @@ class OverlayWriter {
 }  // namespace
 
 TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progress) {
+  const auto job_started = std::chrono::steady_clock::now();
+  const auto finished = [&job_started](TrackJobResult* r) {
+    r->wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job_started).count();
+  };
   // Everything that can be refused is, before the long part.
   std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
   TrackerOptions tracker_options = o.tracker;
@@ -169,7 +174,13 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     }
     tracker_options.person.pixel = (p.array() + 0.5) * source->scales()[c] - 0.5;
   }
-  Tracker tracker(*model, source->cameras(), tracker_options);
+  std::shared_ptr<const PoseTable> table;
+  if (tracker_options.space == StateSpace::kModel) {
+    PoseTableOptions table_options = tracker_options.table;
+    table_options.threads = tracker_options.threads;
+    table = CachedPoseTable(*model, o.model, o.asf, table_options, o.source.note);
+  }
+  Tracker tracker(*model, source->cameras(), tracker_options, table);
   TrackJobResult result;
   TrackRun& run = result.run;
   run.model_path = o.model;
@@ -254,7 +265,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     for (const TrackedFrame& f : run.frames) truth.push_back(clip->truth().frames[f.index].joints_mm);
     result.errors = EvaluateRun(run, model->skeleton(), truth, clip->truth().joint_names);
   }
-  if (!folder) return result;
+  if (!folder) return finished(&result), result;
 
   // The results, all or none.
   OutputBatch batch;
@@ -292,6 +303,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   if (o.overlays)
     for (const Camera& c : run.cameras) result.written.push_back(fs::path(o.out) / ("overlay_" + c.name + ".avi"));
   if (o.save_masks) result.written.push_back(fs::path(o.out) / "masks");
+  finished(&result);
   return result;
 }
 

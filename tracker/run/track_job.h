@@ -51,6 +51,8 @@ struct TrackJobResult {
   double loop_seconds = 0;  // the tracking loop's wall time: reading and preparing the
                             // frames (decoding, background subtraction) and tracking,
                             // without writing outputs (run.tracking_seconds: filtering)
+  double wall_seconds = 0;  // the whole job: reading the model, the pose table, opening
+                            // the sources, the loop and writing everything
   double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate, after the
                                                    // frames held for the start
   int latency_frames = 0;                          // ...over this many frames (0: none)

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <thread>
 
 #include "io/base/error.h"
@@ -124,6 +126,126 @@ PoseTable::PoseTable(const GaitModel& model, const PoseTableOptions& options) : 
         stride_[static_cast<size_t>(k) * n_[1] + j] = travel;
       }
   }
+}
+
+namespace {
+
+constexpr char kMagic[8] = {'J', 'G', 'P', 'M', 'T', 'A', 'B', '1'};
+
+template <typename T>
+void Put(std::string* out, const T& value) {
+  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+template <typename T>
+void PutVector(std::string* out, const std::vector<T>& values) {
+  Put(out, static_cast<uint64_t>(values.size()));
+  out->append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// Reads what Put wrote, refusing to run past the end.
+class Reader {
+ public:
+  Reader(const std::string& bytes, const std::string& source) : bytes_(bytes), source_(source) {}
+  template <typename T>
+  T Get() {
+    T value;
+    Take(&value, sizeof(T));
+    return value;
+  }
+  template <typename T>
+  std::vector<T> GetVector(uint64_t expected) {
+    const uint64_t n = Get<uint64_t>();
+    if (n != expected) Fail("an array of " + std::to_string(n) + " values where " + std::to_string(expected) + " belong");
+    if (n > (bytes_.size() - at_) / sizeof(T)) Fail("truncated");
+    std::vector<T> values(n);
+    Take(values.data(), n * sizeof(T));
+    return values;
+  }
+  std::string GetString() {
+    const uint64_t n = Get<uint64_t>();
+    if (n > bytes_.size() - at_) Fail("truncated");
+    std::string text = bytes_.substr(at_, n);
+    at_ += n;
+    return text;
+  }
+  bool GetBool() {
+    const uint8_t b = Get<uint8_t>();
+    if (b > 1) Fail("a flag of " + std::to_string(b));
+    return b == 1;
+  }
+  bool AtEnd() const { return at_ == bytes_.size(); }
+  [[noreturn]] void Fail(const std::string& what) const { ThrowInputError(source_, "not a pose table: " + what); }
+
+ private:
+  void Take(void* to, uint64_t n) {
+    if (n > bytes_.size() - at_) Fail("truncated");
+    std::memcpy(to, bytes_.data() + at_, n);
+    at_ += n;
+  }
+  const std::string& bytes_;
+  const std::string& source_;
+  size_t at_ = 0;
+};
+
+}  // namespace
+
+std::string PoseTable::Serialize(const std::string& key) const {
+  std::string out(kMagic, sizeof(kMagic));
+  Put(&out, static_cast<uint64_t>(key.size()));
+  out += key;
+  Put(&out, static_cast<uint8_t>(manifold_));
+  Put(&out, bones_);
+  Put(&out, channels_);
+  for (int d = 0; d < 3; ++d) {
+    Put(&out, n_[d]);
+    Put(&out, lo_[d]);
+    Put(&out, hi_[d]);
+    Put(&out, step_[d]);
+    Put(&out, static_cast<uint8_t>(periodic_[d]));
+  }
+  PutVector(&out, fast_);
+  PutVector(&out, poses_);
+  PutVector(&out, stride_);
+  return out;
+}
+
+std::unique_ptr<PoseTable> PoseTable::Parse(const std::string& bytes, const std::string& key,
+                                            const std::string& source) {
+  Reader in(bytes, source);
+  char magic[sizeof(kMagic)];
+  for (char& c : magic) c = in.Get<char>();
+  if (!std::equal(magic, magic + sizeof(kMagic), kMagic)) in.Fail("it does not begin with JGPMTAB1");
+  if (in.GetString() != key) return nullptr;
+  std::unique_ptr<PoseTable> table(new PoseTable());
+  table->manifold_ = in.GetBool();
+  table->bones_ = in.Get<int>();
+  table->channels_ = in.Get<int>();
+  if (table->bones_ < 1 || table->bones_ > 1000 || table->channels_ < 1 || table->channels_ > 10000)
+    in.Fail("bones or channels out of range");
+  uint64_t nodes = 1;
+  for (int d = 0; d < 3; ++d) {
+    table->n_[d] = in.Get<int>();
+    table->lo_[d] = in.Get<double>();
+    table->hi_[d] = in.Get<double>();
+    table->step_[d] = in.Get<double>();
+    table->periodic_[d] = in.GetBool();
+    const int n = table->n_[d];
+    if (n < 1 || n > 4096 || (table->periodic_[d] && n < 2))
+      in.Fail("grid size out of range");
+    if (!(std::isfinite(table->lo_[d]) && std::isfinite(table->hi_[d]) && table->step_[d] > 0 &&
+          std::isfinite(table->step_[d])))
+      in.Fail("grid range not finite");
+    nodes *= static_cast<uint64_t>(n);
+  }
+  if (nodes > (uint64_t{1} << 24)) in.Fail("too many nodes");
+  table->fast_size_ = 3 * table->bones_ + 2;
+  table->fast_ = in.GetVector<float>(nodes * table->fast_size_);
+  table->poses_ = in.GetVector<float>(nodes * table->channels_);
+  table->stride_ = in.GetVector<double>(table->manifold_ ? static_cast<uint64_t>(table->n_[1]) * table->n_[2] : 0);
+  if (!in.AtEnd()) in.Fail("bytes after the end");
+  const auto finite = [](const auto& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+  if (!finite(table->fast_) || !finite(table->poses_) || !finite(table->stride_)) in.Fail("values not finite");
+  return table;
 }
 
 PoseTable::Corner PoseTable::Corners(const Eigen::Vector3d& at) const {

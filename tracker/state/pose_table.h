@@ -17,6 +17,8 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,8 +45,16 @@ struct PoseTableOptions {
 
 class PoseTable {
  public:
-  // Builds the table (about a second for ML-JGPM's 1800 points on 2 threads).
+  // Builds the table (about 3 s for ML-JGPM's 1800 points on 2 threads).
   PoseTable(const GaitModel& model, const PoseTableOptions& options = {});
+
+  // The table as bytes, with `key` (what it was built from: the caller's choice, e.g. a
+  // hash of the model file and the options), to be read back by Parse bit for bit.
+  std::string Serialize(const std::string& key) const;
+  // The table in `bytes` when they hold `key`; null when they hold another key. InputError
+  // naming `source` when the bytes are not a table (truncated, sizes that disagree, not
+  // finite).
+  static std::unique_ptr<PoseTable> Parse(const std::string& bytes, const std::string& key, const std::string& source);
 
   bool manifold() const { return manifold_; }
   int NumBones() const { return bones_; }
@@ -68,6 +78,7 @@ class PoseTable {
   double StrideMm(double gait, double scale) const;
 
  private:
+  PoseTable() = default;
   struct Corner {
     std::array<int, 8> node;
     std::array<double, 8> weight;
@@ -75,7 +86,7 @@ class PoseTable {
   Corner Corners(const Eigen::Vector3d& at) const;
   int Node(int i, int j, int k) const { return (k * n_[1] + j) * n_[0] + i; }
 
-  bool manifold_;
+  bool manifold_ = false;
   int bones_ = 0, channels_ = 0;
   std::array<int, 3> n_{};
   std::array<double, 3> lo_{}, hi_{}, step_{};

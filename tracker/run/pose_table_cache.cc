@@ -1,0 +1,71 @@
+#include "tracker/run/pose_table_cache.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/base/error.h"
+#include "io/base/text_reader.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A file's bytes, or "" when it cannot be read.
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return in ? bytes.str() : std::string();
+}
+
+// FNV-1a, 64 bits: a change of any byte changes the key.
+std::string Hash(const std::string& bytes) {
+  uint64_t h = 1469598103934665603ull;
+  for (const char c : bytes) h = (h ^ static_cast<uint8_t>(c)) * 1099511628211ull;
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+}  // namespace
+
+std::string PoseTableCachePath(const std::string& model_path) { return model_path + ".table"; }
+
+std::shared_ptr<const PoseTable> CachedPoseTable(const GaitModel& model, const std::string& model_path,
+                                                 const std::string& asf_path, const PoseTableOptions& options,
+                                                 const std::function<void(const std::string&)>& note) {
+  const auto say = [&note](const std::string& text) {
+    if (note) note(text);
+  };
+  const std::string model_bytes = ReadBytes(model_path);
+  if (model_bytes.empty()) return std::make_shared<const PoseTable>(model, options);
+  std::ostringstream key;
+  key << "model " << Hash(model_bytes) << " asf " << (asf_path.empty() ? "none" : Hash(ReadBytes(asf_path)))
+      << " nodes " << options.phase_nodes << ' ' << options.nodes_per_gait << ' ' << options.scale_nodes << ' '
+      << options.latent_nodes << " margin " << options.latent_margin << " neighbours " << options.density_neighbours;
+  const std::string path = PoseTableCachePath(model_path);
+  std::error_code error;
+  if (fs::is_regular_file(path, error)) {
+    try {
+      std::unique_ptr<PoseTable> kept = PoseTable::Parse(ReadBytes(path), key.str(), path);
+      if (kept && kept->manifold() == model.HasManifold() &&
+          kept->NumBones() == static_cast<int>(model.skeleton().bones.size()) &&
+          kept->NumChannels() == model.NumChannels())
+        return kept;
+    } catch (const InputError& e) {
+      say(std::string(e.what()) + "; building it again");
+    }
+  }
+  auto table = std::make_shared<const PoseTable>(model, options);
+  try {
+    WriteFileAtomic(path, table->Serialize(key.str()));
+  } catch (const InputError& e) {
+    say(std::string("the pose table is not kept: ") + e.what());
+  }
+  return table;
+}
+
+}  // namespace jgpm
