@@ -39,13 +39,23 @@ cv::VideoCapture OpenVideo(const std::string& path) {
 
 }  // namespace
 
-VideoFileSource::VideoFileSource(const std::string& path, int sample) : path_(path), video_(OpenVideo(path)) {
+VideoFileSource::VideoFileSource(const std::string& path, int sample, VideoCheck check)
+    : path_(path), video_(OpenVideo(path)), as_it_goes_(check == VideoCheck::kAsItGoes) {
   width_ = static_cast<int>(video_.get(cv::CAP_PROP_FRAME_WIDTH));
   height_ = static_cast<int>(video_.get(cv::CAP_PROP_FRAME_HEIGHT));
   fps_ = video_.get(cv::CAP_PROP_FPS);
   if (!(fps_ > 0 && fps_ <= 1000)) ThrowInputError(path, "states no usable frame rate (" + std::to_string(fps_) + ")");
   const double stated = video_.get(cv::CAP_PROP_FRAME_COUNT);
   stated_ = std::isfinite(stated) && stated > 0 ? static_cast<int>(stated) : 0;
+  if (as_it_goes_) {
+    // No first pass: the first frame is decoded now (a video with none is refused before
+    // anything is made), the rest are checked as they are read.
+    if (!ReadDecodable(&video_, stated_, &first_)) ThrowInputError(path, "has no frame that decodes (empty or damaged video)");
+    first_time_s_ = video_.get(cv::CAP_PROP_POS_MSEC) / 1000;
+    CheckSize(first_, 0);
+    decodable_ = stated_ > 0 ? stated_ : -1;
+    return;
+  }
   // The damage check: decode everything once. OpenCV skips a frame that does not decode
   // and goes on; the container time then jumps, which is how skipped frames are counted.
   cv::VideoCapture scan = OpenVideo(path);
@@ -60,11 +70,7 @@ VideoFileSource::VideoFileSource(const std::string& path, int sample) : path_(pa
       sampled_.push_back(frame.clone());
       ++w;
     }
-    if (frame.cols != width_ || frame.rows != height_) {
-      ThrowInputError(path, "frame " + std::to_string(decodable_) + " is " + std::to_string(frame.cols) + "x" +
-                                std::to_string(frame.rows) + ", not the stated " + std::to_string(width_) + "x" +
-                                std::to_string(height_));
-    }
+    CheckSize(frame, decodable_);
     const double ms = scan.get(cv::CAP_PROP_POS_MSEC);
     if (last_ms >= 0) gaps += std::max(0, static_cast<int>(std::lround((ms - last_ms) * fps_ / 1000)) - 1);
     last_ms = ms;
@@ -76,17 +82,40 @@ VideoFileSource::VideoFileSource(const std::string& path, int sample) : path_(pa
   } else {
     sampled_.clear();
   }
+  CheckComplete(decodable_ + gaps);
+}
+
+void VideoFileSource::CheckSize(const cv::Mat& frame, int index) const {
+  if (frame.cols != width_ || frame.rows != height_) {
+    ThrowInputError(path_, "frame " + std::to_string(index) + " is " + std::to_string(frame.cols) + "x" +
+                               std::to_string(frame.rows) + ", not the stated " + std::to_string(width_) + "x" +
+                               std::to_string(height_));
+  }
+}
+
+void VideoFileSource::CheckComplete(int frames) const {
   // A cut file keeps its header's count; a few frames of slack for containers that round.
-  if (stated_ > 0 && decodable_ + gaps < stated_ - std::max(2, stated_ / 100)) {
-    ThrowInputError(path, "is truncated: only " + std::to_string(decodable_ + gaps) + " of the " +
-                              std::to_string(stated_) + " frames its container states are there");
+  if (stated_ > 0 && frames < stated_ - std::max(2, stated_ / 100)) {
+    ThrowInputError(path_, "is truncated: only " + std::to_string(frames) + " of the " + std::to_string(stated_) +
+                               " frames its container states are there");
   }
 }
 
 bool VideoFileSource::Read(Image* image) {
   cv::Mat frame;
-  if (!ReadDecodable(&video_, stated_, &frame)) return false;
-  const double t = video_.get(cv::CAP_PROP_POS_MSEC) / 1000;
+  double t = 0;
+  if (!first_.empty()) {
+    frame = std::move(first_);
+    first_ = cv::Mat();
+    t = first_time_s_;
+  } else {
+    if (!ReadDecodable(&video_, stated_, &frame)) {
+      if (as_it_goes_) CheckComplete(next_);  // next_: the frames read and skipped
+      return false;
+    }
+    t = video_.get(cv::CAP_PROP_POS_MSEC) / 1000;
+    if (as_it_goes_) CheckSize(frame, next_);
+  }
   const int index = static_cast<int>(std::lround(t * fps_));
   skipped_ += std::max(0, index - next_);  // frames that did not decode
   next_ = index + 1;

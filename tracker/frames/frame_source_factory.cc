@@ -78,9 +78,12 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   }
   std::vector<std::unique_ptr<ImageSource>> sources;
   // The background is learnt from a sample of each video unless given: taken during the
-  // video's damage check.
+  // video's damage check. Given, nothing needs a first pass: each video is decoded once,
+  // and checked as it is read.
   const int sample = spec.backgrounds.empty() ? spec.foreground.learning_frames : 0;
-  for (const std::string& video : spec.videos) sources.push_back(std::make_unique<VideoFileSource>(video, sample));
+  const VideoCheck check = spec.backgrounds.empty() ? VideoCheck::kFirst : VideoCheck::kAsItGoes;
+  for (const std::string& video : spec.videos)
+    sources.push_back(std::make_unique<VideoFileSource>(video, sample, check));
   if (!spec.images.empty()) sources.push_back(std::make_unique<ImageFolderSource>(spec.images, spec.images_fps));
   for (const std::string& device : spec.devices) sources.push_back(OpenCamera(spec, device));
   std::vector<Camera> cameras;

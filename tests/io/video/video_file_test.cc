@@ -137,5 +137,43 @@ TEST(VideoFile, DamagedFilesAreRefusedWithTheirName) {
   EXPECT_NE(ErrorOf(dir.path().string()).find("no such video file"), std::string::npos);
 }
 
+// Checked as it goes (one decoding): the same frames, times and content as after a first
+// pass; a cut file is read up to its cut and then refused with its name; a file with no
+// frame is refused at once.
+TEST(VideoFile, CheckedAsItGoesReadsTheSameAndRefusesACutFileAtItsEnd) {
+  test::TempDir dir;
+  const std::string path = WriteVideo(dir, "walk.avi", 20).string();
+  VideoFileSource first(path), going(path, 0, VideoCheck::kAsItGoes);
+  EXPECT_EQ(going.NumFrames(), 20);
+  Image a, b;
+  int k = 0;
+  while (first.Read(&a)) {
+    ASSERT_TRUE(going.Read(&b)) << k;
+    EXPECT_EQ(a.index, b.index);
+    EXPECT_EQ(a.time_s, b.time_s);
+    EXPECT_EQ(cv::norm(a.bgr, b.bgr, cv::NORM_INF), 0) << k;
+    ++k;
+  }
+  EXPECT_FALSE(going.Read(&b));
+  EXPECT_EQ(k, 20);
+
+  const fs::path cut = WriteVideo(dir, "cut.avi", 60);
+  const std::string bytes = Bytes(cut);
+  Put(cut, bytes.substr(0, bytes.size() / 2));
+  VideoFileSource cut_going(cut.string(), 0, VideoCheck::kAsItGoes);
+  int read = 0;
+  try {
+    while (cut_going.Read(&b)) ++read;
+    ADD_FAILURE() << "the cut file ended without complaint after " << read << " frames";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.avi"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+  EXPECT_GT(read, 10);  // what was there was read first
+
+  const fs::path empty = WriteVideo(dir, "empty.avi", 0);
+  EXPECT_THROW(VideoFileSource(empty.string(), 0, VideoCheck::kAsItGoes), InputError);
+}
+
 }  // namespace
 }  // namespace jgpm

@@ -397,6 +397,11 @@ TEST(TrackCli, BadVideosAndFoldersGiveOneLineAndWriteNothing) {
   fs::copy_file(clip / "cam0.avi", cut);
   fs::resize_file(cut, fs::file_size(cut) / 2);
   ExpectRefused(TrackVideos(out, "--video " + cut.string() + camera), out, "cut.avi", "truncated video");
+  // With the empty scene given there is no first pass: the cut is found at its end, after
+  // tracking what is there, and the outputs made meanwhile go with the run.
+  const std::string background = " --background " + (clip / "background" / "cam0.png").string();
+  ExpectRefused(TrackVideos(out, "--video " + cut.string() + camera + background), out, "truncated",
+                "truncated video, background given");
   const fs::path none = dir.path() / "none.avi";
   { cv::VideoWriter(none.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30, cv::Size(160, 120)); }
   ExpectRefused(TrackVideos(out, "--video " + none.string() + camera), out, "none.avi", "zero-frame video");
