@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
+#include <opencv2/photo.hpp>
 
 #include "io/base/error.h"
 
@@ -25,17 +26,92 @@ ForegroundExtractor::ForegroundExtractor(const ForegroundOptions& options, int w
   if (!options.Check(&why)) ThrowInputError("foreground options", why);
 }
 
+std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double min_area) {
+  const int n = static_cast<int>(images.size());
+  std::vector<cv::Mat> grey(n), moving(n);
+  for (int i = 0; i < n; ++i) {
+    cv::cvtColor(images[i], grey[i], cv::COLOR_BGR2GRAY);
+    cv::GaussianBlur(grey[i], grey[i], cv::Size(5, 5), 0);  // the sensor's and the codec's noise
+  }
+  if (n < 2) {
+    moving.assign(n, cv::Mat::zeros(images[0].size(), CV_8UC1));
+    return moving;
+  }
+  std::vector<cv::Mat> change(n - 1);  // |G_i+1 - G_i|
+  for (int i = 0; i + 1 < n; ++i) cv::absdiff(grey[i], grey[i + 1], change[i]);
+  // The noise: the change that 90% of the pixels stay under (people take fewer).
+  std::vector<uint8_t> sample;
+  for (const cv::Mat& c : change)
+    for (int v = 0; v < c.rows; v += 4)
+      for (int u = 0; u < c.cols; u += 4) sample.push_back(c.at<uint8_t>(v, u));
+  const size_t p90 = sample.size() * 9 / 10;
+  std::nth_element(sample.begin(), sample.begin() + p90, sample.end());
+  const double threshold = std::max(6.0, 3.0 * sample[p90]);
+  const int rows = images[0].rows;
+  const int join = std::max(1, static_cast<int>(std::lround(0.02 * rows)));  // 2% of the height
+  const cv::Mat join_kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * join + 1, 2 * join + 1));
+  for (int i = 0; i < n; ++i) {
+    cv::Mat m = cv::Mat::zeros(images[0].size(), CV_8UC1);
+    if (i > 0) m |= change[i - 1] > threshold;
+    if (i + 1 < n) m |= change[i] > threshold;
+    cv::dilate(m, m, join_kernel);  // a body's moving parts (head, arms, legs) join up
+    RemoveSpecks(&m, min_area);
+    // A region shaped like a standing person (at least 0.6 as tall as wide: a walker with
+    // a shadow cast beside them) is filled to its hull: the still parts between moving
+    // ones (a plain shirt) are the person's too. A wider one (a tape or flag in the wind, a
+    // crowd) is not a person's and is left to the median, which handles it.
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(m, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+    m.setTo(0);
+    for (const auto& contour : contours) {
+      const cv::Rect box = cv::boundingRect(contour);
+      if (box.height < 0.6 * box.width) continue;
+      std::vector<cv::Point> hull;
+      cv::convexHull(contour, hull);
+      cv::fillConvexPoly(m, hull, 255);
+    }
+    cv::dilate(m, m, join_kernel);
+    moving[i] = m;
+  }
+  return moving;
+}
+
 void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images) {
   JGPM_CHECK(!images.empty());
   const int n = static_cast<int>(images.size());
+  const size_t pixels = static_cast<size_t>(width_) * height_;
+  for (const cv::Mat& image : images) JGPM_CHECK(image.type() == CV_8UC3 && image.isContinuous() && image.total() == pixels);
+  const std::vector<cv::Mat> moving =
+      options_.exclude_moving ? MovingRegions(images, options_.min_area) : std::vector<cv::Mat>();
+  // At least this many images must show a pixel still for their median to be its scene.
+  const int enough = std::max(3, n / 20);
   cv::Mat median(height_, width_, CV_8UC3);
+  cv::Mat unseen = cv::Mat::zeros(height_, width_, CV_8UC1);  // never still often enough
   std::vector<uint8_t> values(n);
-  const size_t bytes = static_cast<size_t>(width_) * height_ * 3;
-  for (const cv::Mat& image : images) JGPM_CHECK(image.type() == CV_8UC3 && image.isContinuous() && image.total() * 3 == bytes);
-  for (size_t i = 0; i < bytes; ++i) {
-    for (int k = 0; k < n; ++k) values[k] = images[k].data[i];
-    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
-    median.data[i] = values[n / 2];
+  std::vector<int> still(n);
+  for (size_t p = 0; p < pixels; ++p) {
+    int count = 0;
+    for (int k = 0; k < n; ++k)
+      if (moving.empty() || !moving[k].data[p]) still[count++] = k;
+    if (count < enough) unseen.data[p] = 255;
+    for (int channel = 0; channel < 3; ++channel) {
+      const size_t i = 3 * p + channel;
+      int m = 0;
+      if (count >= enough) {
+        for (int j = 0; j < count; ++j) values[m++] = images[still[j]].data[i];
+      } else {  // seen still too rarely: the median of everything
+        for (int k = 0; k < n; ++k) values[m++] = images[k].data[i];
+      }
+      std::nth_element(values.begin(), values.begin() + m / 2, values.begin() + m);
+      median.data[i] = values[m / 2];
+    }
+  }
+  // Where the scene never showed (a walker coming straight at the camera covers the same
+  // pixels all along), the median is the person: filled in from the scene around instead.
+  if (!moving.empty() && cv::countNonZero(unseen) > 0) {
+    cv::Mat filled;
+    cv::inpaint(median, unseen, filled, 5, cv::INPAINT_TELEA);
+    median = filled;
   }
   SetBackground(median);
 }

@@ -6,6 +6,7 @@
 // elsewhere is the tracker's to ignore, as in the clip's own degraded masks).
 #include "tracker/frames/foreground.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -54,6 +55,7 @@ double Iou(const cv::Mat& computed, const cv::Mat& exact) {
 // frames not dropped.
 struct Overlap {
   double mean = 0, worst = 1;
+  std::vector<double> camera_mean;  // per camera
 };
 // `options` empty: the clip's own degraded masks (the renderer's model of a segmentation).
 Overlap Measure(const fs::path& clip, const std::optional<ForegroundOptions>& options, bool learn = false) {
@@ -70,14 +72,17 @@ Overlap Measure(const fs::path& clip, const std::optional<ForegroundOptions>& op
   while (computed.Next(&a) && exact.Next(&b)) {
     EXPECT_EQ(a.index, b.index);
     if (a.dropped) continue;
+    o.camera_mean.resize(a.masks.size());
     for (size_t c = 0; c < a.masks.size(); ++c) {
       const double iou = Iou(a.masks[c], b.masks[c]);
       o.mean += iou;
+      o.camera_mean[c] += iou;
       o.worst = std::min(o.worst, iou);
       ++n;
     }
   }
   o.mean /= n;
+  for (double& m : o.camera_mean) m /= n / static_cast<double>(o.camera_mean.size());
   return o;
 }
 
@@ -107,9 +112,27 @@ TEST(Foreground, Mog2MasksOverlapTheExactSilhouettes) {
   std::printf("MOG2, clean clip (4 cameras), from the empty room: IoU mean %.3f, worst %.3f\n", clean.mean, clean.worst);
   EXPECT_GT(clean.mean, 0.85);
   EXPECT_GT(clean.worst, 0.6);
+}
+
+// The room learnt from the clip's own frames, with no picture of it: in the side cameras as
+// good as the picture; in the front ones, where the walker comes straight at the camera and
+// covers the same pixels all along (the plain per-pixel median holds the walker: 0.29 and
+// 0.44 against 0.85 from the picture), those pixels are filled in from the room around and
+// give 0.66 and 0.62 (measured): the floor between the walker's legs is never seen, only
+// guessed.
+TEST(Foreground, TheRoomLearntFromTheVideoIsAsGoodAsAPictureOfIt) {
+  const Overlap room = Measure(Shared().clean, ForegroundOptions{});
   const Overlap learnt = Measure(Shared().clean, ForegroundOptions{}, true);
-  std::printf("MOG2, clean clip (4 cameras), room learnt from 60 frames: IoU mean %.3f, worst %.3f\n", learnt.mean,
-              learnt.worst);
+  ForegroundOptions plain;
+  plain.exclude_moving = false;
+  const Overlap median = Measure(Shared().clean, plain, true);
+  for (size_t c = 0; c < room.camera_mean.size(); ++c) {
+    std::printf("camera %zu: IoU from the room %.3f, learnt %.3f, plain median %.3f\n", c, room.camera_mean[c],
+                learnt.camera_mean[c], median.camera_mean[c]);
+    EXPECT_GT(learnt.camera_mean[c], room.camera_mean[c] - 0.3) << c;
+  }
+  EXPECT_LT(*std::min_element(median.camera_mean.begin(), median.camera_mean.end()),
+            *std::min_element(learnt.camera_mean.begin(), learnt.camera_mean.end()) - 0.15);  // what it fixes
 }
 
 TEST(Foreground, KnnMasksOverlapTheExactSilhouettes) {
