@@ -194,11 +194,11 @@ void RunTrack(TrackArguments a) {
   if (result.live && result.latency_frames == 0) {
     std::printf("live: no latency measured (no frame came after the %d frames the start holds); %d frames dropped by "
                 "the camera\n",
-                a.job.tracker.start_frames, result.skipped);
+                result.held_frames, result.skipped);
   } else if (result.live) {
     std::printf("live: latency from capture to estimate %.1f ms mean, %.1f ms worst over %d frames (after the %d "
                 "frames the start holds); %d frames dropped by the camera (processing slower than capture)\n",
-                result.mean_latency_ms, result.max_latency_ms, result.latency_frames, a.job.tracker.start_frames,
+                result.mean_latency_ms, result.max_latency_ms, result.latency_frames, result.held_frames,
                 result.skipped);
   } else if (result.skipped > 0) {
     std::printf("%d frame(s) of the video did not decode and were skipped\n", result.skipped);

@@ -72,10 +72,15 @@ std::string VideoFrameSource::end_reason() const {
 }
 
 void VideoFrameSource::Learn() {
+  replay_.resize(sources_.size());
   for (int k = 0; k < options_.foreground.learning_frames; ++k) {
     for (size_t c = 0; c < sources_.size(); ++c) {
       Image image;
-      if (sources_[c]->live() && sources_[c]->Read(&image)) learning_[c].push_back(image.bgr.clone());
+      if (sources_[c]->live() && sources_[c]->Read(&image)) {
+        image.bgr = image.bgr.clone();
+        learning_[c].push_back(image.bgr);
+        replay_[c].push_back({std::move(image), std::chrono::steady_clock::now()});
+      }
     }
   }
   for (size_t c = 0; c < sources_.size(); ++c) {
@@ -86,11 +91,23 @@ void VideoFrameSource::Learn() {
   learnt_ = true;
 }
 
+bool VideoFrameSource::ReadImage(size_t c, Image* image) {
+  if (c < replay_.size() && !replay_[c].empty()) {
+    // A learning image, tracked after all: its latency includes its wait.
+    *image = std::move(replay_[c].front().image);
+    image->latency_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                                   replay_[c].front().read).count();
+    replay_[c].pop_front();
+    return true;
+  }
+  return sources_[c]->Read(image);
+}
+
 bool VideoFrameSource::Next(Frame* frame) {
   if (!learnt_) Learn();
   if (options_.max_frames > 0 && handed_out_ >= options_.max_frames) return false;
   Image first;
-  if (!sources_[0]->Read(&first)) return false;
+  if (!ReadImage(0, &first)) return false;
   const auto handed = std::chrono::steady_clock::now();
   const size_t n = sources_.size();
   const double tolerance = 0.5 / sources_[0]->fps();
@@ -111,7 +128,7 @@ bool VideoFrameSource::Next(Frame* frame) {
       };
       while (!finished_[c] && more()) {
         Image image;
-        if (!sources_[c]->Read(&image)) {
+        if (!ReadImage(c, &image)) {
           finished_[c] = true;
         } else {
           queue.push_back(std::move(image));
@@ -135,7 +152,7 @@ bool VideoFrameSource::Next(Frame* frame) {
       if (!paired[c].bgr.empty()) queued_[c].push_front(std::move(paired[c]));
       paired[c] = Image();
     }
-    if (!sources_[0]->Read(&first)) return false;
+    if (!ReadImage(0, &first)) return false;
   }
   frame->index = first.index;
   frame->time_s = first.time_s;

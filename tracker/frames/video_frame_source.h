@@ -9,6 +9,7 @@
 // missing view as nobody there), and counted in unpaired().
 #pragma once
 
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <string>
@@ -31,8 +32,9 @@ class VideoFrameSource : public FrameSource {
   // One camera per source, same order. InputError naming the source or file: a camera
   // whose image size is not its source's, a background image that is missing or of
   // another size. Learns each camera's background: files and folders here, live cameras
-  // from their first learning frames at the first Next (they start streaming then, and
-  // those frames are not tracked).
+  // from their first learning frames at the first Next (they start streaming then); those
+  // frames are then handed out first, tracked like the rest (a person in view from the
+  // start is tracked from the start, the background learnt around them).
   VideoFrameSource(std::vector<std::unique_ptr<ImageSource>> sources, std::vector<Camera> cameras,
                    const VideoFrameSourceOptions& options);
 
@@ -59,6 +61,13 @@ class VideoFrameSource : public FrameSource {
   std::vector<std::vector<cv::Mat>> learning_;  // per camera, until learnt
   bool learnt_ = false;
   std::vector<std::deque<Image>> queued_;  // per camera: images read ahead, not yet paired
+  struct Kept {
+    Image image;
+    std::chrono::steady_clock::time_point read;
+  };
+  std::vector<std::deque<Kept>> replay_;  // per live camera: the learning images, to track
+  // The next image of camera c: a kept learning image first, then the source's.
+  bool ReadImage(size_t c, Image* image);
   std::vector<bool> finished_;
   int handed_out_ = 0;
   int unpaired_ = 0;

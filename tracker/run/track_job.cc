@@ -197,6 +197,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   run.fps = source->fps();
   run.options = tracker_options;
   result.live = video && video->live();
+  // Frames that wait before they are tracked: the start's, and a live camera's learning
+  // frames (tracked once the background is learnt from them).
+  result.held_frames = tracker_options.start_frames +
+                       (result.live && o.source.backgrounds.empty() ? o.source.foreground.learning_frames : 0);
 
   // Overlays are written as the frames go by when the frames bring their images; a clip
   // tracked from its masks is decoded for them afterwards (kept out of the tracking time).
@@ -212,7 +216,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
       f.latency_ms = frame.latency_ms +
                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame.ready).count();
       // The summary is of the steady state: the frames held for the start wait for it.
-      if (++frames_seen > tracker_options.start_frames) {
+      if (++frames_seen > result.held_frames) {
         latency_sum += f.latency_ms;
         ++latency_count;
         result.max_latency_ms = std::max(result.max_latency_ms, f.latency_ms);

@@ -56,6 +56,8 @@ struct TrackJobResult {
   double mean_latency_ms = 0, max_latency_ms = 0;  // live: capture to estimate, after the
                                                    // frames held for the start
   int latency_frames = 0;                          // ...over this many frames (0: none)
+  int held_frames = 0;  // live: the first frames, left out of the latency (the start's, and
+                        // the background's learning frames when it is learnt)
   std::vector<Camera> working_cameras;  // each camera as the tracker saw it (the working
                                         // resolution's; run.cameras are the full-size ones)
 };

@@ -448,6 +448,18 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
   EXPECT_NE(live.out.find("went away"), std::string::npos) << live.out;
   EXPECT_GE(taken, 5u);
 
+  // No empty scene given: the background is learnt from the first 10 frames, around the
+  // walker already in view, and those frames are tracked too (they were given to the
+  // background alone, and a walker in view at the start lost those seconds).
+  const std::string lens = " --camera " + (clip / "cam0.yaml").string();
+  const Result learnt = TrackVideos(dir.path() / "learnt", "--device fake:" + (clip / "cam0.avi").string() + lens +
+                                                               " --learning-frames 10");
+  ASSERT_EQ(learnt.status, 0) << learnt.err;
+  const nlohmann::json learnt_poses = ReadJsonFile(dir.path() / "learnt" / "poses.json", "poses");
+  ASSERT_GE(learnt_poses["frames"].size(), 10u);
+  EXPECT_EQ(learnt_poses["frames"][0]["frame"], 0);
+  EXPECT_EQ(learnt_poses["frames"][0]["status"], "tracked");
+
   // A camera that goes away while the start still holds its frames: no latency to tell.
   const fs::path short_take = dir.path() / "short.avi";
   {
