@@ -123,7 +123,7 @@ WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const 
   WalkerEvidence evidence;
   int walkers = 0;
   for (const std::string& video : request.videos) {
-    const WalkerEvidence one = read_walkers({video, request.background, request.max_frames, request.fps});
+    const WalkerEvidence one = read_walkers({video, request.background, request.max_frames, request.fps, request.width, request.height});
     // A fixed camera's foreground is its people: a few percent of the image (a walker a
     // metre from a webcam, 10%). Most of it, most of the time, is a camera that moves.
     constexpr double kMovingShare = 0.25;
@@ -310,8 +310,19 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
       "--walkers", a->walkers,
       "video of a fixed camera with people walking by (repeat for several videos of the same camera): its focal "
       "length, height, tilt and roll from their heads and feet (no chessboard; calibration/walker_calibration.h); or a "
-      "folder of its frames (jgpm capture; with --fps), or a synthetic clip folder (jgpm render), its observed masks");
-  walkers->check(CLI::ExistingPath)->excludes(images)->excludes(board)->excludes(square)->excludes(floor)->excludes(fast);
+      "folder of its frames (jgpm capture; with --fps), a synthetic clip folder (jgpm render), its observed masks, or "
+      "a live camera, /dev/videoN (fake:VIDEO plays a video as one), for --max-frames (default 900: 30 s at 30 fps)");
+  walkers
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            std::error_code ec;
+            return text.rfind("fake:", 0) == 0 || std::filesystem::exists(text, ec)
+                       ? std::string()
+                       : "expected a video, a folder of frames, a clip or a camera device; '" + text +
+                             "' does not exist";
+          },
+          "PATH"))
+      ->excludes(images)->excludes(board)->excludes(square)->excludes(floor)->excludes(fast);
   calibrate->add_option("--person-height", a->person_height_m, "the walkers' mean height, metres")
       ->check(CLI::Validator(
           [](std::string& text) {

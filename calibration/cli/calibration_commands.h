@@ -21,7 +21,8 @@ struct WalkerVideo {
   std::string video;       // a video file, a folder of frames, or a synthetic clip folder
   std::string background;  // empty-scene image, or empty: learnt from the video
   int max_frames = 0;      // 0: all
-  double fps = 0;          // a folder of frames' rate
+  double fps = 0;          // a folder of frames' rate, or the rate to ask a live camera for
+  int width = 0, height = 0;  // the size to ask a live camera for (0: its default)
 };
 struct WalkerEvidence {
   int width = 0, height = 0;  // the video's frame size
@@ -42,7 +43,8 @@ struct WalkerRequest {
   int max_frames = 0;
   double person_height_m = 1.70;
   std::string camera;  // YAML whose intrinsics to keep, or empty
-  double fps = 0;      // of folders of frames
+  double fps = 0;      // of folders of frames; asked of a live camera
+  int width = 0, height = 0;  // asked of a live camera (0: its default)
 };
 WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers);
 

@@ -41,6 +41,7 @@ struct TrackArguments {
   bool calibrate_from_walkers = false;
   bool full_resolution = false;
   double person_height_m = 1.70;
+  double calibration_seconds = 30;
   std::string person = "auto";
 };
 
@@ -124,12 +125,20 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
   if (a.calibrate_from_walkers) {
-    if (spec.videos.size() != 1) {
-      ThrowInputError("--calibrate-from-walkers", "calibrates one camera: give one --video (placing several cameras "
-                                                  "from the walkers they share is not done yet)");
+    if (spec.videos.size() + spec.devices.size() != 1 || !spec.images.empty()) {
+      ThrowInputError("--calibrate-from-walkers", "calibrates one camera: give one --video or one --device (placing "
+                                                  "several cameras from the walkers they share is not done yet)");
     }
     WalkerRequest request;
     request.videos = spec.videos;
+    if (!spec.devices.empty()) {
+      // A live camera: its first seconds, then tracking from where it is then.
+      request.videos = spec.devices;
+      request.max_frames = std::max(1, static_cast<int>(std::lround(a.calibration_seconds * spec.device_fps)));
+      request.fps = spec.device_fps;
+      request.width = spec.device_width;
+      request.height = spec.device_height;
+    }
     if (!spec.backgrounds.empty()) request.background = spec.backgrounds[0];
     request.person_height_m = a.person_height_m;
     spec.cameras = {CalibrateFromWalkerVideos(request, ReadWalkersFromVideo).camera};
@@ -316,9 +325,14 @@ void AddTrackCommands(CLI::App& app) {
           ->check(CLI::ExistingFile);
   CLI::Option* from_walkers = track->add_flag(
       "--calibrate-from-walkers", a->calibrate_from_walkers,
-      "no calibration: the camera from the people walking in the --video, first (jgpm calibrate --walkers; "
-      "written to OUT/cam0.yaml)");
+      "no calibration: the camera from the people walking in the --video, first, or in the --device's first "
+      "--calibration-seconds (jgpm calibrate --walkers; written to OUT/cam0.yaml)");
   from_walkers->excludes(camera);
+  track->add_option("--calibration-seconds", a->calibration_seconds,
+                    "with --calibrate-from-walkers and a --device: how long to watch the walkers before tracking")
+      ->check(CLI::Range(1.0, 3600.0))
+      ->needs(from_walkers)
+      ->capture_default_str();
   track->add_option("--person-height", a->person_height_m, "with --calibrate-from-walkers: the walkers' mean height, m")
       ->check(CLI::Range(1.0, 2.5))
       ->needs(from_walkers)

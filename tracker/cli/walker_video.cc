@@ -13,7 +13,9 @@
 namespace jgpm::cli {
 
 WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
+  constexpr int kLiveFrames = 900;
   FrameSourceSpec spec;
+  bool live = false;
   if (std::filesystem::exists(std::filesystem::path(video.video) / "ground_truth.json")) {
     spec.clip = video.video;  // a synthetic clip's observed masks
   } else if (std::filesystem::is_directory(video.video)) {
@@ -21,12 +23,19 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
     spec.images = video.video;
     spec.images_fps = video.fps;
     spec.camera_guess = true;
+  } else if (video.video.rfind("/dev/video", 0) == 0 || video.video.rfind("fake:", 0) == 0) {
+    spec.devices = {video.video};  // a live camera, for its next max_frames frames
+    if (video.fps > 0) spec.device_fps = video.fps;
+    if (video.width > 0 && video.height > 0) spec.device_width = video.width, spec.device_height = video.height;
+    spec.camera_guess = true;
+    live = true;
   } else {
     spec.videos = {video.video};
     spec.camera_guess = true;  // the masks need no camera; the source wants one
   }
   if (!video.background.empty()) spec.backgrounds = {video.background};
-  spec.max_frames = video.max_frames;
+  // A live camera is watched for 30 s at 30 fps unless told otherwise.
+  spec.max_frames = live && video.max_frames == 0 ? kLiveFrames : video.max_frames;
   // People far from a surveillance camera are 30-60 px tall with limbs 2-3 px wide: the
   // tracker's clean-up (an opening of 2 px radius at 480 rows) erases them. Heads and
   // feet need the whole blob: no opening (specks are dropped by size and shape anyway).
@@ -35,7 +44,7 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   const Camera& camera = source->cameras().front();
   WalkerPointFinder finder(camera.width, camera.height);
   ProgressLine line("walkers", 0.5);
-  const int total = source->NumFrames();
+  const int total = live ? spec.max_frames : source->NumFrames();
   Frame frame;
   std::vector<double> shares;
   while (source->Next(&frame)) {
@@ -43,7 +52,7 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
     const cv::Mat& mask = frame.masks.front();
     finder.Add(mask);
     shares.push_back(static_cast<double>(cv::countNonZero(mask)) / mask.total());
-    line.Update(frame.index + 1, total, "frames", "finding heads and feet");
+    line.Update(live ? finder.frames() : frame.index + 1, total, "frames", "finding heads and feet");
   }
   line.Finish();
   WalkerEvidence evidence;

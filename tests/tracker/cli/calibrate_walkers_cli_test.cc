@@ -154,6 +154,13 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
       {"calibrate --walkers " + frames.string() + " --fps 30" + o, 1, "do not determine"},
       {"calibrate --walkers " + nobody.string() + o, 1, "got 0"},
       {"calibrate --walkers " + pan.string() + o, 1, "needs a fixed camera"},
+      // A live camera (the software one playing the empty scene): watched for its frames,
+      // then refused the same way; and tracking from it, calibrated from its first second.
+      {"calibrate --walkers fake:" + nobody.string() + " --max-frames 30" + o, 1, "got 0"},
+      {"track --model " + (dir_->path() / "none.json").string() + " --device fake:" + nobody.string() +
+           " --calibrate-from-walkers --calibration-seconds 1 --out " + (dir_->path() / "track").string(),
+       1, "got 0"},
+      {"calibrate --walkers fake" + o, 2, "does not exist"},
       // Tracking with the camera calibrated first: the calibration's refusal stops it.
       {"track --model " + (dir_->path() / "none.json").string() + " --video " + clips_[0] + "/cam0.avi" +
            " --calibrate-from-walkers --out " + (dir_->path() / "track").string(),
