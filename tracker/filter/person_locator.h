@@ -57,7 +57,8 @@ struct PersonPreference {
   int camera = 0;
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
 
-  static PersonPreference Near(const Eigen::Vector2d& floor_mm, double within_mm) {
+  static PersonPreference Near(const Eigen::Vector2d& floor_mm,
+                               double within_mm = std::numeric_limits<double>::infinity()) {
     PersonPreference p;
     p.kind = Kind::kNearPlace, p.floor_mm = floor_mm, p.within_mm = within_mm;
     return p;

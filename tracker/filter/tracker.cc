@@ -50,7 +50,8 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
   else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
-  else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0)) problem = "bad relocation options";
+  else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
+    problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
   else if (person.kind == PersonPreference::Kind::kNearPlace) problem = "person: the strongest or nearest a pixel";
   else if (person.kind == PersonPreference::Kind::kNearPixel && !(person.camera >= 0 && person.pixel.allFinite()))
@@ -330,7 +331,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // Where the masks alone put the person: looked for once a frame, when first needed.
   std::optional<PersonSighting> sighting;
   const auto located = [&]() -> const PersonSighting& {
-    if (!sighting) sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm, 1e300));
+    if (!sighting) sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm));
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
@@ -480,7 +481,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   out_of_view_ = drawn ? 0 : out_of_view_ + 1;
   // A restart looks first where the person was last seen and explained well.
   if (drawn && bad_frames_ == 0)
-    next_choice_ = PersonPreference::Near(Eigen::Vector2d(out.joints_mm(0, 0), out.joints_mm(2, 0)), 1e300);
+    next_choice_ = PersonPreference::Near(Eigen::Vector2d(out.joints_mm(0, 0), out.joints_mm(2, 0)));
   const bool left = out_of_view_ >= options_.lost_frames;
   if (left && !seen.found) seen = located();
   // Someone seen far from where the dynamics put the person is someone or something else:

@@ -11,6 +11,8 @@
 //
 // Start: the first frames' masks give the person's place, height and direction of travel
 // (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there.
+// With several people in view one is chosen (TrackerOptions::person) and kept: every later
+// look at the masks asks for the person nearest where the dynamics put them.
 // Each frame: predict, anneal, estimate. A dropped frame is predicted only. When the
 // estimate explains the masks badly (mean IoU below lost_iou, over the cameras that see
 // someone where the person is expected or draw the estimate) for lost_frames frames, or
@@ -103,7 +105,10 @@ struct TrackerOptions {
   int relocate_every = 5;
   double relocate_distance_mm = 300;
   int relocate_share = 10;
-  double relocate_merged = 1.6;  // not to a blob this many times the estimate's drawn area
+  // Not to a blob with this many times the pixels the estimate drew in that camera the
+  // frame before: one walker's blob is within about 1.3 times (a stride's swing, the
+  // estimate's IoU of 0.7-0.8), two walkers' merged blob about twice.
+  double relocate_merged = 1.6;
   // A person explained badly while someone is seen where they could not have walked to is
   // taken for hidden (predicted, not restarted on what is seen) for at most this long: a
   // walker passes behind a pillar or a parked car in a second or two.

@@ -81,8 +81,9 @@ void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images) {
   const int n = static_cast<int>(images.size());
   const size_t pixels = static_cast<size_t>(width_) * height_;
   for (const cv::Mat& image : images) JGPM_CHECK(image.type() == CV_8UC3 && image.isContinuous() && image.total() == pixels);
+  // Fewer than 10 images cannot spare any: the plain median.
   const std::vector<cv::Mat> moving =
-      options_.exclude_moving ? MovingRegions(images, options_.min_area) : std::vector<cv::Mat>();
+      options_.exclude_moving && n >= 10 ? MovingRegions(images, options_.min_area) : std::vector<cv::Mat>();
   // At least this many images must show a pixel still for their median to be its scene.
   const int enough = std::max(3, n / 20);
   cv::Mat median(height_, width_, CV_8UC3);
@@ -108,7 +109,9 @@ void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images) {
   }
   // Where the scene never showed (a walker coming straight at the camera covers the same
   // pixels all along), the median is the person: filled in from the scene around instead.
-  if (!moving.empty() && cv::countNonZero(unseen) > 0) {
+  // A hole of people, not most of the image (a crowd, a moving camera: the median then).
+  const int holes = cv::countNonZero(unseen);
+  if (!moving.empty() && holes > 0 && holes < 0.25 * static_cast<double>(pixels)) {
     cv::Mat filled;
     cv::inpaint(median, unseen, filled, 5, cv::INPAINT_TELEA);
     median = filled;

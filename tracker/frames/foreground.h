@@ -29,9 +29,10 @@
 // all, the tape fluttering over vtest.avi's plaza was inpainted and became foreground.) A pixel still
 // in fewer than a twentieth of the images (at least 3) was hardly ever the scene (the walker
 // coming at the camera covers the same pixels all along, far or near): it is filled in from
-// the scene around it (OpenCV's inpainting), not the plain median, which is the person. A
-// person who stands still through the images is not moving either: that needs a given
-// background.
+// the scene around it (OpenCV's inpainting), not the plain median, which is the person
+// (unless that is a quarter of the image or more: a crowd, a moving camera). Fewer than 10
+// images: the plain median. A person who stands still through the images is not moving
+// either: that needs a given background.
 //
 // A global change of light (a cloud, auto exposure) would turn the whole image into
 // foreground: each image is first divided by its brightness gain against the background,
