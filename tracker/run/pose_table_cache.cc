@@ -43,7 +43,7 @@ std::shared_ptr<const PoseTable> CachedPoseTable(const GaitModel& model, const s
   const std::string model_bytes = ReadBytes(model_path);
   if (model_bytes.empty()) return std::make_shared<const PoseTable>(model, options);
   std::ostringstream key;
-  key << "model " << Hash(model_bytes) << " asf " << (asf_path.empty() ? "none" : Hash(ReadBytes(asf_path)))
+  key << "table " << PoseTable::kVersion << " model " << Hash(model_bytes) << " asf " << (asf_path.empty() ? "none" : Hash(ReadBytes(asf_path)))
       << " nodes " << options.phase_nodes << ' ' << options.nodes_per_gait << ' ' << options.scale_nodes << ' '
       << options.latent_nodes << " margin " << options.latent_margin << " neighbours " << options.density_neighbours;
   const std::string path = PoseTableCachePath(model_path);

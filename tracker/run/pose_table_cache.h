@@ -1,8 +1,8 @@
 // A model file's pose table (tracker/state/pose_table.h), kept beside it as MODEL.table, so
 // that a run does not spend seconds rebuilding what the last run built: on 2 cores the
 // ML-JGPM table takes about 3 s, longer than tracking a 4-second clip. The file holds a
-// key: a hash of the model file's bytes, of the skeleton the poses are placed on (--asf)
-// and of the table's options. A file with another key (the model retrained, other
+// key: the table's version (PoseTable::kVersion), a hash of the model file's bytes, of the
+// skeleton the poses are placed on (--asf) and of the table's options. A file with another key (the model retrained, other
 // options) or damaged is rebuilt and replaced (atomically); when the model's folder cannot
 // be written the table is built and nothing is kept.
 #pragma once

@@ -48,6 +48,10 @@ class PoseTable {
   // Builds the table (about 3 s for ML-JGPM's 1800 points on 2 threads).
   PoseTable(const GaitModel& model, const PoseTableOptions& options = {});
 
+  // What the constructor computes, numbered: raise it when that changes (the density, the
+  // grid, the foot height...), so that tables kept by an older jgpm are built again.
+  static constexpr int kVersion = 1;
+
   // The table as bytes, with `key` (what it was built from: the caller's choice, e.g. a
   // hash of the model file and the options), to be read back by Parse bit for bit.
   std::string Serialize(const std::string& key) const;
