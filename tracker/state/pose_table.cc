@@ -139,7 +139,7 @@ void Put(std::string* out, const T& value) {
 template <typename T>
 void PutVector(std::string* out, const std::vector<T>& values) {
   Put(out, static_cast<uint64_t>(values.size()));
-  out->append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  if (!values.empty()) out->append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
 // Reads what Put wrote, refusing to run past the end.
@@ -179,6 +179,7 @@ class Reader {
  private:
   void Take(void* to, uint64_t n) {
     if (n > bytes_.size() - at_) Fail("truncated");
+    if (n == 0) return;  // `to` may be null (an empty array)
     std::memcpy(to, bytes_.data() + at_, n);
     at_ += n;
   }
