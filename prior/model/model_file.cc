@@ -1,8 +1,8 @@
 #include "prior/model/model_file.h"
 
 #include <cstdint>
-#include <cstdio>
 
+#include "io/base/checksum.h"
 #include "io/base/error.h"
 #include "io/base/json_file.h"
 #include "io/base/text_reader.h"
@@ -23,15 +23,6 @@ json Matrix(const Eigen::MatrixXd& m) {
 }
 
 json Vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
-
-// FNV-1a, 64 bits, as 16 hex digits.
-std::string Checksum(const std::string& text) {
-  uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : text) hash = (hash ^ c) * 1099511628211ull;
-  char out[17];
-  std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(hash));
-  return out;
-}
 
 const char* ShapeName(TopologyShape shape) { return shape == TopologyShape::kTorus ? "torus" : "cylinder"; }
 

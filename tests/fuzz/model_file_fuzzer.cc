@@ -4,11 +4,11 @@
 // What loads must predict finite poses and write and read back to identical predictions.
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "io/base/checksum.h"
 #include "io/base/error.h"
 #include "prior/model/model_file.h"
 
@@ -24,11 +24,7 @@ std::string WithChecksum(const std::string& text) {
     return text;
   }
   if (!file.is_object() || !file.contains("model")) return text;
-  uint64_t hash = 1469598103934665603ull;
-  for (unsigned char c : file["model"].dump()) hash = (hash ^ c) * 1099511628211ull;
-  char hex[17];
-  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
-  file["checksum"] = hex;
+  file["checksum"] = jgpm::Checksum(file["model"].dump());
   return file.dump();
 }
 

@@ -1,10 +1,10 @@
 #include "tracker/run/pose_table_cache.h"
 
-#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "io/base/checksum.h"
 #include "io/base/error.h"
 #include "io/base/text_reader.h"
 
@@ -21,15 +21,6 @@ std::string ReadBytes(const std::string& path) {
   return in ? bytes.str() : std::string();
 }
 
-// FNV-1a, 64 bits: a change of any byte changes the key.
-std::string Hash(const std::string& bytes) {
-  uint64_t h = 1469598103934665603ull;
-  for (const char c : bytes) h = (h ^ static_cast<uint8_t>(c)) * 1099511628211ull;
-  char text[17];
-  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(h));
-  return text;
-}
-
 }  // namespace
 
 std::string PoseTableCachePath(const std::string& model_path) { return model_path + ".table"; }
@@ -43,7 +34,7 @@ std::shared_ptr<const PoseTable> CachedPoseTable(const GaitModel& model, const s
   const std::string model_bytes = ReadBytes(model_path);
   if (model_bytes.empty()) return std::make_shared<const PoseTable>(model, options);
   std::ostringstream key;
-  key << "table " << PoseTable::kVersion << " model " << Hash(model_bytes) << " asf " << (asf_path.empty() ? "none" : Hash(ReadBytes(asf_path)))
+  key << "table " << PoseTable::kVersion << " model " << Checksum(model_bytes) << " asf " << (asf_path.empty() ? "none" : Checksum(ReadBytes(asf_path)))
       << " nodes " << options.phase_nodes << ' ' << options.nodes_per_gait << ' ' << options.scale_nodes << ' '
       << options.latent_nodes << " margin " << options.latent_margin << " neighbours " << options.density_neighbours;
   const std::string path = PoseTableCachePath(model_path);
