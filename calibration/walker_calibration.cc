@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <ceres/ceres.h>
 
+#include "calibration/walker_camera.h"
 #include "io/base/error.h"
 
 namespace jgpm {
@@ -18,10 +19,8 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180;
 constexpr double kMaxRollDeg = 30;
 
-// The camera's parameters as Ceres sees them: log focal (px), tilt down (rad), roll (rad),
-// log height (mm). Logs keep the focal length and height positive and make their steps
-// relative.
-enum { kLogFocal, kTilt, kRoll, kLogHeight, kCameraParameters };
+// The camera's parameters as Ceres sees them: walker_camera.h.
+constexpr int kCameraParameters = kWalkerCameraParameters;
 // Each walker's: height (mm) and lean (mm: the head's sideways offset from the feet's
 // vertical, as seen from the camera).
 enum { kWalkerHeight, kWalkerLean, kWalkerParameters };
@@ -37,26 +36,13 @@ struct Pair {
 // point where the foot pixel's ray falls to `foot_mm` above the floor: the height there
 // (mm), the sideways miss (mm) and the head's depth (mm). False when the foot's ray does
 // not go down to that height or the head is not in front of the camera.
-//
-// The camera sits at C = (0, h, 0) with cam_from_world R = Rz(roll) R0(tilt), R0's rows
-// the camera's right, down and forward axes in the world (right = -x, forward
-// (0, -sin tilt, cos tilt)): LookAtCamera's camera, rolled about its axis.
+// The camera sits at C = (0, h, 0) (walker_camera.h).
 template <typename T>
 bool HeadOnVertical(const T* camera, const Pair& pair, const T& head_radius_mm, const T& foot_mm, T* head_height,
                     T* miss_mm, T* depth_mm) {
-  using std::cos, std::exp, std::sin, std::sqrt;
-  const T f = exp(camera[kLogFocal]);
-  const T ct = cos(camera[kTilt]), st = sin(camera[kTilt]);
-  const T cr = cos(camera[kRoll]), sr = sin(camera[kRoll]);
+  using std::exp, std::sqrt;
   const T h = exp(camera[kLogHeight]);
-  // World direction R^T (q / f, 1) = R0^T Rz^T d; R0 is symmetric.
-  auto ray = [&](const Eigen::Vector2d& q, T* w) {
-    const T dx = T(q.x()) / f, dy = T(q.y()) / f;
-    const T ex = cr * dx + sr * dy, ey = -sr * dx + cr * dy, ez = T(1);
-    w[0] = -ex;
-    w[1] = -ct * ey - st * ez;
-    w[2] = -st * ey + ct * ez;
-  };
+  auto ray = [camera](const Eigen::Vector2d& q, T* w) { WalkerCameraRay(camera, q, w); };
   T d[3], g[3];
   ray(pair.foot, d);
   ray(pair.head, g);
@@ -151,12 +137,7 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
                                std::to_string(intrinsics.height) + " images, the video's are " +
                                std::to_string(width) + "x" + std::to_string(height));
   }
-  auto ideal = [&](const Eigen::Vector2d& pixel) -> Eigen::Vector2d {
-    if (!fixed_focal) return pixel - Eigen::Vector2d(intrinsics.cx, intrinsics.cy);
-    // Undistorted through the user's lens, in units of fx.
-    const Eigen::Vector3d ray = intrinsics.PixelRaysInWorld(pixel).col(0);
-    return ray.head<2>() / ray.z() * intrinsics.fx;
-  };
+  auto ideal = [&](const Eigen::Vector2d& pixel) { return IdealPixel(intrinsics, pixel); };
   std::map<int, int> walker_index;
   std::vector<Pair> pairs;
   std::vector<int> pair_walker;
@@ -288,6 +269,8 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
 
   WalkerCalibration result;
   result.walkers = walkers;
+  std::copy(camera, camera + kCameraParameters, result.parameters.begin());
+  result.covariance = Eigen::Map<const Eigen::Matrix4d>(c) * scale;  // symmetric: storage order moot
   const double focal = std::exp(camera[kLogFocal]);
   const double camera_height = std::exp(camera[kLogHeight]);
   result.focal_px = {fixed_focal ? intrinsics.fx : focal, fixed_focal ? 0 : focal * sd(kLogFocal)};
@@ -325,17 +308,7 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
     refuse("roll", Fixed(result.roll_deg.value, 1) + " +- " + Fixed(result.roll_deg.sd, 1) + " degrees");
   }
 
-  // The camera: LookAtCamera's above the origin, rolled about its axis.
-  const double tilt = camera[kTilt];
-  const Eigen::Vector3d centre(0, camera_height, 0);
-  Camera placed = LookAtCamera("cam0", width, height, focal, centre,
-                               centre + Eigen::Vector3d(0, -std::sin(tilt), std::cos(tilt)) * 1000);
-  const Eigen::Matrix3d rotation =
-      Eigen::AngleAxisd(camera[kRoll], Eigen::Vector3d::UnitZ()).toRotationMatrix() * placed.cam_from_world_rotation;
-  if (fixed_focal) placed = intrinsics;
-  placed.name = "cam0";
-  placed.cam_from_world_rotation = rotation;
-  placed.cam_from_world_translation_mm = -rotation * centre;
+  const Camera placed = WalkerCamera(intrinsics, result.parameters, fixed_focal);
   result.camera = placed;
   return result;
 }

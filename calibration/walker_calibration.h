@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 
 #include "calibration/camera.h"
+#include "calibration/walker_camera.h"
 
 namespace jgpm {
 
@@ -41,6 +42,8 @@ struct HeadFoot {
   Eigen::Vector2d head_px = Eigen::Vector2d::Zero();  // top of the head
   Eigen::Vector2d foot_px = Eigen::Vector2d::Zero();  // low on the legs (foot_share below)
   int walker = 0;                                     // same number: same person
+  int frame = 0;  // when: the frame's number on the video's clock (several cameras placed
+                  // together, calibration/rig_placement.h, match their walkers by it)
 };
 
 struct WalkerCalibrationOptions {
@@ -101,6 +104,11 @@ struct WalkerCalibration {
   double rms_line_px = 0;       // the head rays' sideways miss, px
   double rms_height_mm = 0;     // heads around their walker's height, mm
   std::vector<double> walker_heights_mm;  // each walker's height found, in walker order
+  // The fit itself (walker_camera.h) and its covariance, scaled as the uncertainties above
+  // (the focal length's row and column zero when the intrinsics were given): for refining
+  // the camera with others that see the same walkers (rig_placement.h).
+  WalkerCameraParameters parameters{};
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
 };
 
 // The camera from head-foot pairs seen in an image of `width` x `height` pixels. Walker

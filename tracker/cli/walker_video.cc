@@ -48,7 +48,10 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   Frame frame;
   std::vector<double> shares;
   while (source->Next(&frame)) {
-    if (frame.dropped) continue;
+    if (frame.dropped) {
+      finder.Skip();  // keeps the frame numbers on the video's clock
+      continue;
+    }
     const cv::Mat& mask = frame.masks.front();
     finder.Add(mask);
     shares.push_back(static_cast<double>(cv::countNonZero(mask)) / mask.total());

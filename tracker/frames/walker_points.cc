@@ -56,6 +56,7 @@ void WalkerPointFinder::Add(const cv::Mat& mask) {
     // centre is inside the person).
     blob.point.head_px = {centroid(y, y + rows(options_.head_share)).x(), y - 0.5};
     blob.point.foot_px = centroid(y + h - rows(options_.foot_share), y + h);
+    blob.point.frame = frame_;
     blob.height = h;
     blobs.push_back(blob);
   }

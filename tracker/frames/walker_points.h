@@ -55,10 +55,13 @@ class WalkerPointFinder {
 
   // One frame's mask (CV_8UC1, non-zero = foreground, the finder's size).
   void Add(const cv::Mat& mask);
+  // A frame the video lost (dropped): the clock moves on, nothing is seen.
+  void Skip() { ++frame_; }
 
-  // Every walker's points seen in at least min_frames frames, walkers numbered from 0.
+  // Every walker's points seen in at least min_frames frames, walkers numbered from 0,
+  // each point's frame the number of frames added or skipped before it.
   std::vector<HeadFoot> Points() const;
-  int frames() const { return frame_; }
+  int frames() const { return frame_; }  // added and skipped
 
  private:
   struct Track {

@@ -47,6 +47,9 @@ TEST(WalkerPointFinder, FindsEachWalkersHeadAndFeetAndKeepsTheirIdentity) {
       EXPECT_DOUBLE_EQ(point.foot_px.y(), (173 + 190) / 2.0);
     }
     EXPECT_DOUBLE_EQ(point.head_px.x(), point.foot_px.x());  // upright
+    // The frame, from where the walker was drawn then.
+    const double x0 = is_a ? 40 : 280, speed = is_a ? 3 : -2;
+    EXPECT_NEAR(point.head_px.x(), x0 + speed * point.frame, 0.5) << point.frame;
   }
   EXPECT_EQ(a, 30);
   EXPECT_EQ(b, 30);
@@ -62,12 +65,21 @@ TEST(WalkerPointFinder, AWalkerHiddenTooLongComesBackAsAnother) {
   for (int frame = 0; frame < 20; ++frame) {
     cv::Mat mask(240, 320, CV_8UC1, cv::Scalar(0));
     if (frame < 5 || frame >= 5 + options.max_gap_frames + 1) Draw(&mask, 100 + frame, 120, 10, 40);
+    if (frame == 3) {
+      finder.Skip();  // a frame the video lost: the clock moves on
+      continue;
+    }
     finder.Add(mask);
   }
+  EXPECT_EQ(finder.frames(), 20);
   const auto points = finder.Points();
   ASSERT_FALSE(points.empty());
   EXPECT_EQ(points.front().walker, 0);
   EXPECT_EQ(points.back().walker, 1);
+  for (const HeadFoot& point : points) {
+    EXPECT_NE(point.frame, 3);
+    EXPECT_NEAR(point.head_px.x(), 100 + point.frame, 0.5);
+  }
 }
 
 }  // namespace
