@@ -489,6 +489,14 @@ RigPlacement PlaceRig(const std::vector<RigCamera>& cameras, const RigPlacementO
     placed[k] = true;
   }
   Refine(cameras, sightings, similarity, in_rig, options, &rig);
+  WalkerCalibrationOptions bounds;
+  bounds.max_relative_sd = options.max_relative_sd;
+  bounds.max_angle_sd_deg = options.max_angle_sd_deg;
+  for (int k = 0; k < n; ++k) {
+    const PlacedCamera& c = rig.cameras[k];
+    RequireDetermined("cam" + std::to_string(k) + ", placed with the others", c.focal_px, c.height_mm, c.tilt_deg,
+                      c.roll_deg, bounds);
+  }
   return rig;
 }
 

@@ -83,6 +83,11 @@ struct RigPlacementOptions {
   // of cameras' matches count as one observation per this many (half a gait cycle: 15 at
   // 30 fps; `jgpm calibrate` sets it from the frame rate).
   double correlated_frames = 15;
+  // Each camera's focal length, height, tilt and roll, refined, must be determined to
+  // these (as WalkerCalibrationOptions'): a camera whose own walkers left one loose (its
+  // calibration made with refuse_undetermined off) may be pinned down by the others.
+  double max_relative_sd = 0.10;
+  double max_angle_sd_deg = 3;
 };
 
 struct PlacedCamera {
@@ -102,8 +107,9 @@ struct RigPlacement {
   std::vector<PlacedCamera> cameras;  // in the order given
 };
 
-// InputError, in one line, when fewer than two cameras are given, or naming the camera that
-// shares too few walkers with the others (no common view, clocks not synchronised).
+// InputError, in one line, when fewer than two cameras are given, naming the camera that
+// shares too few walkers with the others (no common view, clocks not synchronised), or
+// naming one left undetermined.
 RigPlacement PlaceRig(const std::vector<RigCamera>& cameras, const RigPlacementOptions& options = {});
 
 // A placed camera's view on the floor: the turn about the vertical of its optical axis's

@@ -106,6 +106,27 @@ std::string Fixed(double value, int decimals) {
 
 }  // namespace
 
+void RequireDetermined(const std::string& where, const Estimate& focal_px, const Estimate& height_mm,
+                       const Estimate& tilt_deg, const Estimate& roll_deg, const WalkerCalibrationOptions& options) {
+  auto refuse = [&](const std::string& name, const std::string& value) {
+    ThrowInputError(where, "the walkers do not determine the " + name + " (" + value +
+                               "): walkers nearer to and farther from the camera, more of them, or a longer video "
+                               "would; or give the camera's intrinsics (--camera)");
+  };
+  if (focal_px.sd > options.max_relative_sd * focal_px.value) {
+    refuse("focal length", Fixed(focal_px.value, 0) + " +- " + Fixed(focal_px.sd, 0) + " px");
+  }
+  if (height_mm.sd > options.max_relative_sd * height_mm.value) {
+    refuse("camera's height", Fixed(height_mm.value, 0) + " +- " + Fixed(height_mm.sd, 0) + " mm");
+  }
+  if (tilt_deg.sd > options.max_angle_sd_deg) {
+    refuse("tilt", Fixed(tilt_deg.value, 1) + " +- " + Fixed(tilt_deg.sd, 1) + " degrees");
+  }
+  if (roll_deg.sd > options.max_angle_sd_deg) {
+    refuse("roll", Fixed(roll_deg.value, 1) + " +- " + Fixed(roll_deg.sd, 1) + " degrees");
+  }
+}
+
 CameraAngles AnglesOf(const Camera& camera) {
   const Eigen::Matrix3d& r = camera.cam_from_world_rotation;
   const Eigen::Vector3d up_in_camera = r.col(1);
@@ -290,22 +311,8 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   result.rms_line_px = std::sqrt(line2 / pairs.size());
   result.rms_height_mm = std::sqrt(height2 / pairs.size());
 
-  auto refuse = [&](const std::string& name, const std::string& value) {
-    ThrowInputError(where, "the walkers do not determine the " + name + " (" + value +
-                               "): walkers nearer to and farther from the camera, more of them, or a longer video "
-                               "would; or give the camera's intrinsics (--camera)");
-  };
-  if (!fixed_focal && result.focal_px.sd > options.max_relative_sd * focal) {
-    refuse("focal length", Fixed(focal, 0) + " +- " + Fixed(result.focal_px.sd, 0) + " px");
-  }
-  if (result.height_mm.sd > options.max_relative_sd * camera_height) {
-    refuse("camera's height", Fixed(camera_height, 0) + " +- " + Fixed(result.height_mm.sd, 0) + " mm");
-  }
-  if (result.tilt_deg.sd > options.max_angle_sd_deg) {
-    refuse("tilt", Fixed(result.tilt_deg.value, 1) + " +- " + Fixed(result.tilt_deg.sd, 1) + " degrees");
-  }
-  if (result.roll_deg.sd > options.max_angle_sd_deg) {
-    refuse("roll", Fixed(result.roll_deg.value, 1) + " +- " + Fixed(result.roll_deg.sd, 1) + " degrees");
+  if (options.refuse_undetermined) {
+    RequireDetermined(where, result.focal_px, result.height_mm, result.tilt_deg, result.roll_deg, options);
   }
 
   const Camera placed = WalkerCamera(intrinsics, result.parameters, fixed_focal);

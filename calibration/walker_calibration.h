@@ -89,6 +89,8 @@ struct WalkerCalibrationOptions {
   // (one standard deviation): the focal length and height relative, the angles in degrees.
   double max_relative_sd = 0.10;
   double max_angle_sd_deg = 3;
+  // Off when other cameras will determine it further (rig_placement.h checks it after).
+  bool refuse_undetermined = true;
   int min_points = 20;
 };
 
@@ -118,6 +120,11 @@ struct WalkerCalibration {
 // uncertainty, and what would help: walkers nearer and farther from the camera).
 WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int width, int height,
                                        const WalkerCalibrationOptions& options = {});
+
+// InputError naming `where` and the first of the four not determined to the options'
+// bounds (a focal length given by the user has sd 0).
+void RequireDetermined(const std::string& where, const Estimate& focal_px, const Estimate& height_mm,
+                       const Estimate& tilt_deg, const Estimate& roll_deg, const WalkerCalibrationOptions& options);
 
 // The same four numbers read off any placed camera (for comparing with a calibration):
 // tilt down from level, and roll, in the convention of CalibrateFromWalkers; the height

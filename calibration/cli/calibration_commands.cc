@@ -10,6 +10,7 @@
 
 #include "calibration/camera.h"
 #include "calibration/chessboard.h"
+#include "calibration/rig_placement.h"
 #include "io/base/error.h"
 #include "io/cli/progress.h"
 #include "io/video/image_list.h"
@@ -112,57 +113,14 @@ void CheckOutFolder(const std::string& out) {
 
 }  // namespace
 
-WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers) {
-  WalkerCalibrationOptions options;
-  options.person_height_mm = request.person_height_m * 1000;
-  if (!request.camera.empty()) options.intrinsics = ReadCameraYaml(request.camera).camera;
-  std::printf("calibrating from the walkers in %zu video(s) (people %.2f m tall on average, +- %.2f m)\n",
-              request.videos.size(), request.person_height_m, options.person_height_sd_mm / 1000);
-  std::fflush(stdout);
-  // Several videos of one camera: their walkers are different people.
-  WalkerEvidence evidence;
-  int walkers = 0;
-  for (const std::string& video : request.videos) {
-    const WalkerEvidence one = read_walkers({video, request.background, request.max_frames, request.fps, request.width, request.height});
-    // A fixed camera's foreground is its people: a few percent of the image (a walker a
-    // metre from a webcam, 10%). Most of it, most of the time, is a camera that moves.
-    constexpr double kMovingShare = 0.25;
-    if (one.foreground_share > kMovingShare) {
-      ThrowInputError("--walkers " + video, "half its frames are more than " +
-                                                std::to_string(std::lround(100 * one.foreground_share)) +
-                                                "% foreground: a moving camera (or changing light)? calibration from "
-                                                "walkers needs a fixed camera");
-    }
-    if (evidence.width == 0) {
-      evidence.width = one.width;
-      evidence.height = one.height;
-      evidence.fps = one.fps;
-    } else if (one.width != evidence.width || one.height != evidence.height) {
-      ThrowInputError("--walkers " + video, "frames of " + std::to_string(one.width) + "x" +
-                                                std::to_string(one.height) + ", the first video's are " +
-                                                std::to_string(evidence.width) + "x" + std::to_string(evidence.height) +
-                                                " (every video must come from the one camera)");
-    }
-    int most = -1;
-    for (HeadFoot point : one.points) {
-      most = std::max(most, point.walker);
-      point.walker += walkers;
-      evidence.points.push_back(point);
-    }
-    walkers += most + 1;
-    evidence.frames += one.frames;
-    std::printf("  %s: %zu points of %d walkers in %d frames\n", video.c_str(), one.points.size(), most + 1,
-                one.frames);
-  }
-  std::printf("%zu head-foot points of %d walkers wholly in view, in %d frames (%.1f s of video)\n",
-              evidence.points.size(), walkers, evidence.frames, evidence.fps > 0 ? evidence.frames / evidence.fps : 0.0);
-  // Frames within half a gait cycle (about half a second) share their errors.
-  if (evidence.fps > 0) options.correlated_frames = std::max(1.0, 0.5 * evidence.fps);
-  const WalkerCalibration found = CalibrateFromWalkers(evidence.points, evidence.width, evidence.height, options);
-  const double fov = 2 * std::atan(evidence.width / 2.0 / found.focal_px.value) * 180 / std::acos(-1.0);
-  if (options.intrinsics) {
+namespace {
+
+// One camera's calibration as found, with each number's uncertainty.
+void PrintWalkerCalibration(const WalkerCalibration& found, int width, const std::string& intrinsics) {
+  const double fov = 2 * std::atan(width / 2.0 / found.focal_px.value) * 180 / std::acos(-1.0);
+  if (!intrinsics.empty()) {
     std::printf("focal length  %.1f px (kept from %s, with its lens distortion)\n", found.focal_px.value,
-                request.camera.c_str());
+                intrinsics.c_str());
   } else {
     std::printf("focal length  %.1f +- %.1f px (horizontal field of view %.1f degrees; principal point at the image "
                 "centre, no lens distortion assumed: give --camera for a chessboard's)\n",
@@ -176,23 +134,173 @@ WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const 
   std::string heights;
   for (double h : found.walker_heights_mm) heights += (heights.empty() ? "" : " ") + std::to_string(std::lround(h));
   std::printf("the walkers' heights, mm: %s\n", heights.c_str());
-  PrintPlacement(found.camera, "above the world origin, looking along +z (one camera cannot see its place on the floor)");
-  return found;
+}
+
+}  // namespace
+
+std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers) {
+  JGPM_CHECK(!request.takes.empty() && !request.takes.front().empty());
+  const size_t n = request.takes.front().size();
+  for (const std::vector<std::string>& take : request.takes) {
+    if (take.size() != n) {
+      ThrowInputError("--walkers " + take.front(), "lists " + std::to_string(take.size()) + " cameras' videos, the "
+                                                       "first --walkers " + std::to_string(n) +
+                                                       " (each --walkers is one take: a video per camera)");
+    }
+  }
+  for (const auto* list : {&request.backgrounds, &request.intrinsics}) {
+    if (!list->empty() && list->size() != n) {
+      ThrowInputError(list == &request.backgrounds ? "--background" : "--camera",
+                      "give one per camera (" + std::to_string(n) + "), comma-separated, got " +
+                          std::to_string(list->size()));
+    }
+  }
+  auto per_camera = [](const std::vector<std::string>& list, size_t k) { return list.empty() ? "" : list[k]; };
+  const size_t videos = request.takes.size() * n;
+  std::printf("calibrating %s from the walkers in %zu video(s) (people %.2f m tall on average, +- %.2f m)\n",
+              n == 1 ? "a camera" : (std::to_string(n) + " cameras").c_str(), videos, request.person_height_m,
+              WalkerCalibrationOptions().person_height_sd_mm / 1000);
+  std::fflush(stdout);
+  // Every take's videos, each camera's walkers numbered apart across takes (they are
+  // different people) and its frames on one clock (takes follow each other).
+  std::vector<WalkerEvidence> evidence(n);
+  std::vector<int> walkers(n, 0);
+  int clock = 0;
+  for (const std::vector<std::string>& take : request.takes) {
+    int longest = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const std::string& video = take[k];
+      const WalkerEvidence one = read_walkers({video, per_camera(request.backgrounds, k), request.max_frames,
+                                               request.fps, request.width, request.height});
+      // A fixed camera's foreground is its people: a few percent of the image (a walker a
+      // metre from a webcam, 10%). Most of it, most of the time, is a camera that moves.
+      constexpr double kMovingShare = 0.25;
+      if (one.foreground_share > kMovingShare) {
+        ThrowInputError("--walkers " + video, "half its frames are more than " +
+                                                  std::to_string(std::lround(100 * one.foreground_share)) +
+                                                  "% foreground: a moving camera (or changing light)? calibration "
+                                                  "from walkers needs a fixed camera");
+      }
+      WalkerEvidence& e = evidence[k];
+      if (e.width == 0) {
+        e.width = one.width;
+        e.height = one.height;
+        e.fps = one.fps;
+      } else if (one.width != e.width || one.height != e.height) {
+        ThrowInputError("--walkers " + video, "frames of " + std::to_string(one.width) + "x" +
+                                                  std::to_string(one.height) + ", the camera's first video's are " +
+                                                  std::to_string(e.width) + "x" + std::to_string(e.height) +
+                                                  " (every video of a camera must come from that camera)");
+      }
+      int most = -1;
+      for (HeadFoot point : one.points) {
+        most = std::max(most, point.walker);
+        point.walker += walkers[k];
+        point.frame += clock;
+        e.points.push_back(point);
+      }
+      walkers[k] += most + 1;
+      e.frames += one.frames;
+      longest = std::max(longest, one.frames);
+      std::printf("  %s: %zu points of %d walkers in %d frames\n", video.c_str(), one.points.size(), most + 1,
+                  one.frames);
+    }
+    clock += longest;
+  }
+  std::vector<RigCamera> rig(n);
+  for (size_t k = 0; k < n; ++k) {
+    const WalkerEvidence& e = evidence[k];
+    WalkerCalibrationOptions options;
+    options.person_height_mm = request.person_height_m * 1000;
+    const std::string intrinsics = per_camera(request.intrinsics, k);
+    if (!intrinsics.empty()) options.intrinsics = ReadCameraYaml(intrinsics).camera;
+    // Frames within half a gait cycle (about half a second) share their errors.
+    if (e.fps > 0) options.correlated_frames = std::max(1.0, 0.5 * e.fps);
+    options.refuse_undetermined = n == 1;  // several: the others may pin it down
+    const std::string name = "cam" + std::to_string(k);
+    if (n > 1) std::printf("%s (%s ...):\n", name.c_str(), request.takes.front()[k].c_str());
+    std::printf("%zu head-foot points of %d walkers wholly in view, in %d frames (%.1f s of video)\n",
+                e.points.size(), walkers[k], e.frames, e.fps > 0 ? e.frames / e.fps : 0.0);
+    try {
+      rig[k].calibration = CalibrateFromWalkers(e.points, e.width, e.height, options);
+    } catch (const InputError& error) {
+      if (n == 1) throw;
+      ThrowInputError(name + " (--walkers " + request.takes.front()[k] + ")", error.what());
+    }
+    rig[k].calibration.camera.name = name;
+    rig[k].points = e.points;
+    PrintWalkerCalibration(rig[k].calibration, e.width, intrinsics);
+  }
+  if (n == 1) {
+    PrintPlacement(rig[0].calibration.camera,
+                   "above the world origin, looking along +z (one camera cannot see its place on the floor)");
+    return {rig[0].calibration.camera};
+  }
+  RigPlacementOptions options;
+  options.person_height_mm = request.person_height_m * 1000;
+  options.foot_height_mm = WalkerCalibrationOptions().foot_share * options.person_height_mm;
+  if (evidence[0].fps > 0) options.correlated_frames = std::max(1.0, 0.5 * evidence[0].fps);
+  const RigPlacement placed = PlaceRig(rig, options);
+  std::printf("placed from the walkers they share, and refined together (cam0's floor point is the origin, its "
+              "view +z):\n");
+  std::vector<Camera> cameras;
+  for (size_t k = 0; k < n; ++k) {
+    const PlacedCamera& c = placed.cameras[k];
+    std::printf("  cam%zu: floor point (%.0f, %.0f) +- %.0f mm, turned %.2f +- %.2f degrees; height %.0f +- %.0f mm, "
+                "tilt %.2f +- %.2f, roll %.2f +- %.2f degrees, focal length %.1f +- %.1f px",
+                k, c.x_mm.value, c.z_mm.value, std::max(c.x_mm.sd, c.z_mm.sd), c.yaw_deg.value, c.yaw_deg.sd,
+                c.height_mm.value, c.height_mm.sd, c.tilt_deg.value, c.tilt_deg.sd, c.roll_deg.value, c.roll_deg.sd,
+                c.focal_px.value, c.focal_px.sd);
+    if (k > 0) {
+      std::printf("; %d sightings matched with cam%d's, %.0f mm RMS apart", c.matches, c.placed_against, c.rms_mm);
+    }
+    std::printf("\n");
+    cameras.push_back(c.camera);
+  }
+  return cameras;
 }
 
 namespace {
 
+// "a,b,c" -> {"a", "b", "c"}.
+std::vector<std::string> SplitCommas(const std::string& text) {
+  std::vector<std::string> parts;
+  size_t from = 0;
+  for (size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1) {
+    parts.push_back(text.substr(from, comma - from));
+  }
+  parts.push_back(text.substr(from));
+  return parts;
+}
+
 void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& read_walkers) {
-  CheckOutFolder(a.out);
-  const WalkerCalibration found =
-      CalibrateFromWalkerVideos({a.walkers, a.background, a.max_frames, a.person_height_m, a.camera, a.fps},
-                                read_walkers);
-  CameraFile file;
-  file.camera = found.camera;
-  file.camera.name = a.name;
-  file.has_extrinsics = true;
-  WriteCameraYaml(file, a.out);
-  std::printf("wrote %s\n", a.out.c_str());
+  WalkerRequest request;
+  for (const std::string& take : a.walkers) request.takes.push_back(SplitCommas(take));
+  if (!a.background.empty()) request.backgrounds = SplitCommas(a.background);
+  if (!a.camera.empty()) request.intrinsics = SplitCommas(a.camera);
+  request.max_frames = a.max_frames;
+  request.person_height_m = a.person_height_m;
+  request.fps = a.fps;
+  const size_t n = request.takes.front().size();
+  // Several cameras: --out is a folder for their camK.yaml (made if missing).
+  if (n == 1) {
+    CheckOutFolder(a.out);
+  } else if (fs::exists(a.out) && !fs::is_directory(a.out)) {
+    ThrowInputError("--out " + a.out, "several cameras are written as camK.yaml into a folder; this is a file");
+  } else if (!fs::is_directory(fs::absolute(a.out).parent_path())) {
+    ThrowInputError("--out " + a.out, "no such folder to make it in");
+  }
+  const std::vector<Camera> found = CalibrateFromWalkerVideos(request, read_walkers);
+  if (n > 1) fs::create_directories(a.out);
+  for (size_t k = 0; k < found.size(); ++k) {
+    CameraFile file;
+    file.camera = found[k];
+    if (n == 1) file.camera.name = a.name;
+    file.has_extrinsics = true;
+    const std::string path = n == 1 ? a.out : (fs::path(a.out) / (found[k].name + ".yaml")).string();
+    WriteCameraYaml(file, path);
+    std::printf("wrote %s\n", path.c_str());
+  }
 }
 
 void RunCalibrate(const CalibrateArguments& a) {
@@ -277,7 +385,10 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
       ->check(kBoardSize);
   CLI::Option* square = calibrate->add_option("--square", a->square_mm, "side of a square as printed, mm")
       ->check(kPositiveMm);
-  calibrate->add_option("--out", a->out, "camera YAML to write (OpenCV's calibration keys plus the pose)")->required();
+  calibrate->add_option("--out", a->out,
+                        "camera YAML to write (OpenCV's calibration keys plus the pose); several cameras from walkers: "
+                        "a folder for their camK.yaml")
+      ->required();
   calibrate->add_option("--name", a->name, "camera name written to the YAML")
       ->check(CLI::Validator(
           [](const std::string& name) {
@@ -311,17 +422,23 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
       "video of a fixed camera with people walking by (repeat for several videos of the same camera): its focal "
       "length, height, tilt and roll from their heads and feet (no chessboard; calibration/walker_calibration.h); or a "
       "folder of its frames (jgpm capture; with --fps), a synthetic clip folder (jgpm render), its observed masks, or "
-      "a live camera, /dev/videoN (fake:VIDEO plays a video as one), for --max-frames (default 900: 30 s at 30 fps)");
+      "a live camera, /dev/videoN (fake:VIDEO plays a video as one), for --max-frames (default 900: 30 s at 30 fps). "
+      "Several cameras that see the same people: their videos, started together, comma-separated (A.avi,B.avi; "
+      "repeat for more takes): each is calibrated, then all are placed in cam0's world from the walkers they share "
+      "(calibration/rig_placement.h) and written to the folder --out as camK.yaml");
   walkers
       ->check(CLI::Validator(
           [](std::string& text) {
-            std::error_code ec;
-            return text.rfind("fake:", 0) == 0 || std::filesystem::exists(text, ec)
-                       ? std::string()
-                       : "expected a video, a folder of frames, a clip or a camera device; '" + text +
-                             "' does not exist";
+            for (const std::string& part : SplitCommas(text)) {
+              std::error_code ec;
+              if (part.rfind("fake:", 0) != 0 && !std::filesystem::exists(part, ec)) {
+                return "expected a video, a folder of frames, a clip or a camera device; '" + part +
+                       "' does not exist";
+              }
+            }
+            return std::string();
           },
-          "PATH"))
+          "PATH[,PATH...]"))
       ->excludes(images)->excludes(board)->excludes(square)->excludes(floor)->excludes(fast);
   calibrate->add_option("--person-height", a->person_height_m, "the walkers' mean height, metres")
       ->check(CLI::Validator(
@@ -334,11 +451,29 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
           "METRES"))
       ->needs(walkers)
       ->capture_default_str();
-  calibrate->add_option("--camera", a->camera, "camera YAML whose intrinsics and lens distortion to keep (a chessboard's)")
-      ->check(CLI::ExistingFile)
+  calibrate->add_option("--camera", a->camera,
+                        "camera YAML whose intrinsics and lens distortion to keep (a chessboard's); several cameras: "
+                        "one per camera, comma-separated")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            for (const std::string& part : SplitCommas(text)) {
+              if (!std::filesystem::is_regular_file(part)) return "expected a camera YAML; '" + part + "' is no file";
+            }
+            return std::string();
+          },
+          "YAML[,YAML...]"))
       ->needs(walkers);
-  calibrate->add_option("--background", a->background, "picture of the empty scene (default: learnt from the video)")
-      ->check(CLI::ExistingFile)
+  calibrate->add_option("--background", a->background,
+                        "picture of the empty scene (default: learnt from the video); several cameras: one per camera, "
+                        "comma-separated")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            for (const std::string& part : SplitCommas(text)) {
+              if (!std::filesystem::is_regular_file(part)) return "expected an image; '" + part + "' is no file";
+            }
+            return std::string();
+          },
+          "IMAGE[,IMAGE...]"))
       ->needs(walkers);
   calibrate->add_option("--fps", a->fps, "the frame rate of --walkers folders of frames")
       ->check(CLI::PositiveNumber)

@@ -34,19 +34,23 @@ struct WalkerEvidence {
 };
 using ReadWalkers = std::function<WalkerEvidence(const WalkerVideo&)>;
 
-// The camera from the walkers in one or more videos of it (`calibrate --walkers`, `track
-// --calibrate-from-walkers`), printing what was found and each number's uncertainty.
-// InputError as CalibrateFromWalkers, or naming a video of another size.
+// The cameras from the walkers in their videos (`calibrate --walkers`, `track
+// --calibrate-from-walkers`), printing what was found and each number's uncertainty. Each
+// take is one video per camera, all started together; several takes of one camera are
+// several videos of it. One camera is placed above the world origin looking along +z;
+// several are each calibrated, then placed in cam0's world from the walkers they share
+// (calibration/rig_placement.h). InputError as CalibrateFromWalkers and PlaceRig, or naming
+// a video of another size than its camera's others.
 struct WalkerRequest {
-  std::vector<std::string> videos;
-  std::string background;
+  std::vector<std::vector<std::string>> takes;  // [take][camera]
+  std::vector<std::string> backgrounds;         // per camera, or none
   int max_frames = 0;
   double person_height_m = 1.70;
-  std::string camera;  // YAML whose intrinsics to keep, or empty
-  double fps = 0;      // of folders of frames; asked of a live camera
-  int width = 0, height = 0;  // asked of a live camera (0: its default)
+  std::vector<std::string> intrinsics;  // per camera, YAML whose intrinsics to keep, or none
+  double fps = 0;                       // of folders of frames; asked of a live camera
+  int width = 0, height = 0;            // asked of a live camera (0: its default)
 };
-WalkerCalibration CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers);
+std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers);
 
 // Registers `calibrate` under `app`.
 void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers);

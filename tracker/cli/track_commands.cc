@@ -125,23 +125,23 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
   if (a.calibrate_from_walkers) {
-    if (spec.videos.size() + spec.devices.size() != 1 || !spec.images.empty()) {
-      ThrowInputError("--calibrate-from-walkers", "calibrates one camera: give one --video or one --device (placing "
-                                                  "several cameras from the walkers they share is not done yet)");
+    if (!spec.images.empty() || (spec.videos.empty() && spec.devices.size() != 1)) {
+      ThrowInputError("--calibrate-from-walkers", "calibrates from --video files (one per camera, started together) or "
+                                                  "one --device");
     }
     WalkerRequest request;
-    request.videos = spec.videos;
+    request.takes = {spec.videos};
     if (!spec.devices.empty()) {
       // A live camera: its first seconds, then tracking from where it is then.
-      request.videos = spec.devices;
+      request.takes = {spec.devices};
       request.max_frames = std::max(1, static_cast<int>(std::lround(a.calibration_seconds * spec.device_fps)));
       request.fps = spec.device_fps;
       request.width = spec.device_width;
       request.height = spec.device_height;
     }
-    if (!spec.backgrounds.empty()) request.background = spec.backgrounds[0];
+    request.backgrounds = spec.backgrounds;
     request.person_height_m = a.person_height_m;
-    spec.cameras = {CalibrateFromWalkerVideos(request, ReadWalkersFromVideo).camera};
+    spec.cameras = CalibrateFromWalkerVideos(request, ReadWalkersFromVideo);
   }
   spec.note = [](const std::string& text) {
     std::fprintf(stderr, "jgpm: %s\n", text.c_str());
@@ -326,7 +326,8 @@ void AddTrackCommands(CLI::App& app) {
   CLI::Option* from_walkers = track->add_flag(
       "--calibrate-from-walkers", a->calibrate_from_walkers,
       "no calibration: the camera from the people walking in the --video, first, or in the --device's first "
-      "--calibration-seconds (jgpm calibrate --walkers; written to OUT/cam0.yaml)");
+      "--calibration-seconds (jgpm calibrate --walkers; written to OUT/cam0.yaml); several --video files (cameras "
+      "started together): each calibrated, then placed from the walkers they share");
   from_walkers->excludes(camera);
   track->add_option("--calibration-seconds", a->calibration_seconds,
                     "with --calibrate-from-walkers and a --device: how long to watch the walkers before tracking")

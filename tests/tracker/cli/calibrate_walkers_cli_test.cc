@@ -1,9 +1,9 @@
-// `jgpm calibrate --walkers` end to end, against the camera that rendered the walkers:
-// one surveillance camera (640x480, 4.5 m up, looking 25 degrees down) watching real
-// trials walk past at several distances and headings (each trial rendered through the
-// camera turned about the vertical and moved along its view, which is the same camera
-// seeing a walk elsewhere on the floor), calibrated from the clips' masks; and every bad
-// request refused on one line with nothing written.
+// `jgpm calibrate --walkers` end to end, against the cameras that rendered the walkers:
+// two surveillance cameras (640x480, 4.5 and 5.5 m up) watching real trials walk past at
+// several distances and headings (each trial rendered through the rig turned about the
+// vertical and moved, which is the same rig seeing a walk elsewhere on the floor); one
+// calibrated from the clips' masks, both together from their videos (placed from the
+// walkers they share); and every bad request refused on one line with nothing written.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -15,6 +15,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "calibration/camera.h"
+#include "calibration/rig_placement.h"
 #include "calibration/walker_calibration.h"
 #include "test_support.h"
 
@@ -28,13 +29,23 @@ Result Jgpm(const std::string& arguments) { return test::RunJgpm(arguments); }
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-// The camera, `back_mm` further back along its view and turned `yaw_deg` about the world's
-// vertical through the origin (where the lab's walks are).
-Camera Surveillance(double back_mm, double yaw_deg) {
-  const double tilt = 32 * kDeg;
-  const Eigen::Vector3d forward(0, -std::sin(tilt), std::cos(tilt));
-  const Eigen::Vector3d centre = Eigen::Vector3d(0, 4500, 0) - Eigen::Vector3d(0, 0, 9500 + back_mm);
-  Camera camera = LookAtCamera("cam0", 640, 480, 420, centre, centre + forward * 1000);
+// The rig where the walks happen, the walk at the floor's origin: cam0 4.5 m up, `back_mm`
+// + 9.5 m before it, looking 32 degrees down along +z; cam1 5.5 m up, 7 m to the side and
+// 4.5 m beyond the walks' middle (at back_mm 0), looking at it. Both turned `yaw_deg` about
+// the vertical through the origin: the rig seeing a walk elsewhere on the floor, heading
+// elsewhere.
+Camera Surveillance(double back_mm, double yaw_deg, int k = 0) {
+  const Eigen::Vector3d middle(0, 0, -back_mm);  // the walks' middle on the floor
+  Camera camera;
+  if (k == 0) {
+    const double tilt = 32 * kDeg;
+    const Eigen::Vector3d forward(0, -std::sin(tilt), std::cos(tilt));
+    const Eigen::Vector3d centre = Eigen::Vector3d(0, 4500, 0) - Eigen::Vector3d(0, 0, 9500 + back_mm);
+    camera = LookAtCamera("cam0", 640, 480, 420, centre, centre + forward * 1000);
+  } else {
+    camera = LookAtCamera("cam1", 640, 480, 480, middle + Eigen::Vector3d(7000, 5500, 4500), middle);
+  }
+  const Eigen::Vector3d centre = camera.CentreInWorld();
   const Eigen::Matrix3d turn = Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
   camera.cam_from_world_rotation = camera.cam_from_world_rotation * turn.transpose();
   camera.cam_from_world_translation_mm = -camera.cam_from_world_rotation * (turn * centre);
@@ -55,16 +66,19 @@ class CalibrateWalkersCli : public testing::Test {
     const char* trials[] = {"07/07_02", "07/07_03", "35/35_12", "35/35_16", "39/39_12", "02/02_01", "39/39_13",
                             "07/07_04", "35/35_15", "39/39_10"};
     for (int k = 0; k < 10; ++k) {
-      CameraFile file;
-      file.camera = Surveillance((k % 5) * 2500.0 - 4000, (k * 67) % 360);
-      file.has_extrinsics = true;
-      const fs::path yaml = dir_->path() / ("cam" + std::to_string(k) + ".yaml");
-      WriteCameraYaml(file, yaml.string());
+      std::string cameras;
+      for (int c = 0; c < 2; ++c) {
+        CameraFile file;
+        file.camera = Surveillance((k % 5) * 2500.0 - 4000, (k * 67) % 360, c);
+        file.has_extrinsics = true;
+        const fs::path yaml = dir_->path() / ("walk" + std::to_string(k) + "_cam" + std::to_string(c) + ".yaml");
+        WriteCameraYaml(file, yaml.string());
+        cameras += " --camera " + yaml.string();
+      }
       const fs::path clip = dir_->path() / ("walk" + std::to_string(k));
       const std::string trial = trials[k];
-      const Result r = Jgpm("render --amc " + (test::CmuRoot() / "subjects" / (trial + ".amc")).string() +
-                            " --camera " + yaml.string() + " --max-frames 120 --no-contact-sheet --out " +
-                            clip.string());
+      const Result r = Jgpm("render --amc " + (test::CmuRoot() / "subjects" / (trial + ".amc")).string() + cameras +
+                            " --max-frames 120 --no-contact-sheet --out " + clip.string());
       ASSERT_EQ(r.status, 0) << r.err;
       clips_.push_back(clip.string());
     }
@@ -105,6 +119,50 @@ TEST_F(CalibrateWalkersCli, FindsTheCameraThatRenderedTheWalks) {
   EXPECT_LT(focal.sd, 0.10 * focal.value);
   std::string why;
   EXPECT_TRUE(found.Check(&why)) << why;
+}
+
+TEST_F(CalibrateWalkersCli, PlacesTwoCamerasFromTheWalkersTheyShare) {
+  // Each walk is one take: both cameras' videos, which started together.
+  std::string walkers;
+  for (const std::string& clip : clips_) walkers += " --walkers " + clip + "/cam0.avi," + clip + "/cam1.avi";
+  const fs::path out = dir_->path() / "rig";
+  const Result r = Jgpm("calibrate" + walkers + " --person-height 1.66 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  std::printf("%s", r.out.c_str());  // the figures, for the log
+  EXPECT_NE(r.out.find("placed from the walkers they share"), std::string::npos);
+  // The truth in cam0's world: its floor point the origin (the walks' middle is 9.5 m
+  // ahead of it), +z its view.
+  std::vector<Camera> truth, found;
+  for (int k = 0; k < 2; ++k) {
+    truth.push_back(Surveillance(0, 0, k));
+    truth[k].cam_from_world_translation_mm -= truth[k].cam_from_world_rotation * Eigen::Vector3d(0, 0, 9500);
+    found.push_back(ReadCameraYaml((out / ("cam" + std::to_string(k) + ".yaml")).string()).camera);
+    EXPECT_EQ(found[k].name, "cam" + std::to_string(k));
+  }
+  ASSERT_NEAR(truth[0].CentreInWorld().norm(), 4500, 1e-6);
+  // The bounds for each camera: focal length 5%, angles 2 degrees. The heights rest
+  // on the walkers' stature as their silhouettes show it, which on these videos' masks is
+  // 7-8% low (each camera alone too): within 10%, as for one camera, and their ratio
+  // within 3%.
+  for (int k = 0; k < 2; ++k) {
+    SCOPED_TRACE("cam" + std::to_string(k));
+    const CameraAngles angles = AnglesOf(found[k]), true_angles = AnglesOf(truth[k]);
+    EXPECT_NEAR(found[k].fx, truth[k].fx, 0.05 * truth[k].fx) << r.out;
+    EXPECT_NEAR(angles.tilt_deg, true_angles.tilt_deg, 2) << r.out;
+    EXPECT_NEAR(angles.roll_deg, true_angles.roll_deg, 2) << r.out;
+    EXPECT_NEAR(angles.height_mm, true_angles.height_mm, 0.10 * true_angles.height_mm) << r.out;
+  }
+  EXPECT_NEAR(found[1].CentreInWorld().y() / found[0].CentreInWorld().y(),
+              truth[1].CentreInWorld().y() / truth[0].CentreInWorld().y(), 0.03 * 5500 / 4500)
+      << r.out;
+  // cam1's place relative to cam0: its view's turn within 2 degrees, its floor point within
+  // 4% of its distance at the scale the heights found.
+  EXPECT_NEAR(YawOf(found[1]), YawOf(truth[1]), 2) << r.out;
+  const double scale = found[0].CentreInWorld().y() / truth[0].CentreInWorld().y();
+  const Eigen::Vector3d at = found[1].CentreInWorld(), expected = scale * truth[1].CentreInWorld();
+  EXPECT_LT(Eigen::Vector2d(at.x() - expected.x(), at.z() - expected.z()).norm(),
+            0.04 * Eigen::Vector2d(expected.x(), expected.z()).norm())
+      << r.out;
 }
 
 TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
@@ -167,7 +225,23 @@ TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {
        1, "do not determine"},
       {"track --model m.json --clip " + clips_[0] + " --calibrate-from-walkers --out " +
            (dir_->path() / "track").string(),
-       1, "one --video"},
+       1, "--video files"},
+      // Several cameras: every take lists one video per camera, backgrounds one per camera.
+      {"calibrate --walkers " + clips_[0] + "/cam0.avi," + clips_[0] + "/cam1.avi --walkers " + clips_[1] +
+           "/cam0.avi" + o,
+       1, "lists 1 cameras' videos"},
+      {"calibrate --walkers " + clips_[0] + "/cam0.avi," + clips_[0] + "/cam1.avi --background " + clips_[0] +
+           "/background/cam0.png" + o,
+       1, "one per camera"},
+      {"calibrate --walkers " + clips_[0] + "/cam0.avi," + (dir_->path() / "nowhere.avi").string() + o, 2,
+       "nowhere.avi"},
+      // Both cameras' walks in the first take, the second camera's one clip late: the
+      // clocks disagree and nobody is seen by both at once.
+      {"calibrate --walkers " + clips_[0] + "/cam0.avi," + clips_[1] + "/cam1.avi --walkers " + clips_[1] +
+           "/cam0.avi," + clips_[2] + "/cam1.avi --walkers " + clips_[2] + "/cam0.avi," + clips_[3] +
+           "/cam1.avi --walkers " + clips_[3] + "/cam0.avi," + clips_[4] + "/cam1.avi --walkers " + clips_[4] +
+           "/cam0.avi," + clips_[0] + "/cam1.avi" + o,
+       1, "shares too few walkers"},
       {"track --model m.json --video " + clips_[0] + "/cam0.avi --camera " + clips_[0] + "/cam0.yaml" +
            " --calibrate-from-walkers --out " + (dir_->path() / "track").string(),
        2, "excludes"},
