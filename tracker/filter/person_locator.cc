@@ -123,6 +123,7 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     Eigen::Vector2d floor;
     double height;
     bool feet;  // the feet in view (else the place is the adult-height guess)
+    bool whole;  // clear of the side edges
   };
   std::vector<std::vector<Candidate>> candidates(cameras.size());
   for (size_t c = 0; c < cameras.size() && c < masks.size(); ++c) {
@@ -140,6 +141,9 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
       const BlobEnds ends = FindBlobEnds(labels, l, box);
       const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
       const bool head_cut = box.y <= 0;
+      // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
+      // back), whose top is not a head.
+      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
       Eigen::Matrix2Xd pixels(2, 2);
       pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
       const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
@@ -184,7 +188,8 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
         const Eigen::Vector2d along = horizontal.normalized() * distance;
         floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
       }
-      candidates[c].push_back({area, box, Eigen::Vector2d(floor.x(), floor.z()), height, !feet_cut});
+      candidates[c].push_back(
+          {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut});
     }
   }
   // A blob whose feet are seen is better evidence than a guess from a head: when any
@@ -224,6 +229,7 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     }
     if (best_cameras == 0) break;
     PersonSighting sighting;
+    sighting.whole = false;
     sighting.boxes.assign(cameras.size(), cv::Rect());
     sighting.areas.assign(cameras.size(), 0);
     std::vector<double> agreeing_x, agreeing_z, heights, guessed_x, guessed_z;
@@ -240,6 +246,7 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
       candidates[c].erase(candidates[c].begin() + best);
       sighting.boxes[c] = p.box;
       sighting.areas[c] = p.area;
+      sighting.whole = sighting.whole || p.whole;
       (p.feet ? agreeing_x : guessed_x).push_back(p.floor.x());
       (p.feet ? agreeing_z : guessed_z).push_back(p.floor.y());
       if (p.height > 0) heights.push_back(p.height);

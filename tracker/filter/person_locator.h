@@ -6,7 +6,10 @@
 // blob cut by the image's bottom edge (a camera near the walk) stands where its top ray
 // is an adult's 1.7 m above the floor, but no farther than where the bottom edge meets
 // the floor, if it shows at least 0.8 m of a person there, its height unknown; one cut at the top edge has no
-// height either. Blobs one above the other with a small gap (an occluder across the body)
+// height either. One cut by a side edge (someone entering or leaving) is a slice, an arm, a
+// leg or a back, whose top is not a head: its height is unknown, and a person seen only so
+// is not `whole` (on a phone's portrait video an arm alone was placed as an adult 4 m
+// away; the tracker starts only on people wholly in some view, tracker.h). Blobs one above the other with a small gap (an occluder across the body)
 // are one person.
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
 // clutter in the air is) are passed over; with several cameras the place that most cameras'
@@ -34,6 +37,8 @@ struct PersonSighting {
   int cameras = 0;                                     // cameras that saw a blob
   bool feet_seen = false;                              // the place is read from feet (else
                                                        // from the head at an adult's height)
+  bool whole = true;                                   // some camera's blob is clear of the
+                                                       // image's side edges
   std::vector<cv::Rect> boxes;                         // per camera: the blob's box (empty if none)
   std::vector<int> areas;                              // and its pixels (0 if none)
 };

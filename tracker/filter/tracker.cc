@@ -26,6 +26,21 @@ cv::Rect Grow(const cv::Rect& box, double margin, int width, int height) {
   return cv::Rect(box.x - dx, box.y - dy, box.width + 2 * dx, box.height + 2 * dy) & cv::Rect(0, 0, width, height);
 }
 
+// The share of the box of `joints`' images that lies inside `camera`'s image (0 when none
+// is in front of it).
+double ShareInView(const Camera& camera, const Eigen::Matrix3Xd& joints) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (int j = 0; j < joints.cols(); ++j) {
+    Eigen::Vector2d p;
+    if (!camera.Project(joints.col(j), &p)) continue;
+    x0 = std::min(x0, p.x()), y0 = std::min(y0, p.y()), x1 = std::max(x1, p.x()), y1 = std::max(y1, p.y());
+  }
+  if (!(x1 > x0 && y1 > y0)) return 0;
+  const double w = std::min<double>(x1, camera.width) - std::max(x0, 0.0);
+  const double h = std::min<double>(y1, camera.height) - std::max(y0, 0.0);
+  return w > 0 && h > 0 ? w * h / ((x1 - x0) * (y1 - y0)) : 0;
+}
+
 }  // namespace
 
 std::string_view TrackStatusName(TrackStatus status) {
@@ -53,6 +68,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
     problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
+  else if (!(min_in_view >= 0 && min_in_view <= 1)) problem = "min_in_view must be in [0, 1]";
   else if (person.kind == PersonPreference::Kind::kNearPlace) problem = "person: the strongest or nearest a pixel";
   else if (person.kind == PersonPreference::Kind::kNearPixel && !(person.camera >= 0 && person.pixel.allFinite()))
     problem = "person: a camera index >= 0 and a finite pixel";
@@ -164,9 +180,16 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
     }
     return chain;
   };
+  // A start is made on someone wholly in some view: a slice cut by an image's side edge
+  // (someone entering) can be anything from an arm to a back; the frames after may follow
+  // it.
   size_t first = 0;
-  while (first < people.size() && people[first].empty()) ++first;
+  const auto whole = [](const PersonSighting& s) { return s.whole; };
+  while (first < people.size() && std::none_of(people[first].begin(), people[first].end(), whole)) ++first;
   if (first == people.size()) return false;
+  people[first].erase(std::remove_if(people[first].begin(), people[first].end(),
+                                     [](const PersonSighting& s) { return !s.whole; }),
+                      people[first].end());
   std::vector<PersonSighting> sightings;
   if (prefer.kind == PersonPreference::Kind::kStrongest) {
     int most = -1;
@@ -367,6 +390,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     out.status = TrackStatus::kPredicted;
     out.state = filter_->Mean();
     SetEstimate(&out);
+    // Hidden in view; predicted out of every view, they have left it.
+    if (hidden_) out_of_view_ = InView(out.joints_mm) ? 0 : out_of_view_ + 1;
+    if (hidden_ && out_of_view_ >= options_.lost_frames) {
+      hidden_ = false;
+      started_ = false;
+      out.status = TrackStatus::kLost;
+      if (located().found) StartFromFrames({frame});
+    }
     finish(&out);
     return out;
   }
@@ -478,7 +509,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // Drawn in no camera for lost_frames frames: the person has left every view, and
   // whoever is seen (the nearest to where they were) is tracked instead. A prediction
   // walking on out of view while others walk by in it tells nobody anything.
-  out_of_view_ = drawn ? 0 : out_of_view_ + 1;
+  out_of_view_ = drawn && InView(out.joints_mm) ? 0 : out_of_view_ + 1;
   // A restart looks first where the person was last seen and explained well.
   if (drawn && bad_frames_ == 0)
     next_choice_ = PersonPreference::Near(Eigen::Vector2d(out.joints_mm(0, 0), out.joints_mm(2, 0)));
@@ -486,13 +517,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   if (left && !seen.found) seen = located();
   // Someone seen far from where the dynamics put the person is someone or something else:
   // the person is hidden (an occluder, a failed segmentation), and is predicted, not
-  // restarted on it, for up to max_hidden_s.
+  // restarted on it, for up to max_hidden_s; hidden in view, not having left it. Having
+  // left, they are lost, whatever is still seen.
   const bool elsewhere =
       seen.found && frame.time_s - last_good_time_s_ < options_.max_hidden_s && !near_prediction(seen);
-  if (bad_frames_ >= options_.lost_frames && elsewhere) {
+  if (bad_frames_ >= options_.lost_frames && elsewhere && !left) {
     out.status = TrackStatus::kPredicted;
     hidden_ = true;
-  } else if (nobody || bad_frames_ >= options_.lost_frames || (left && seen.found)) {
+  } else if (nobody || bad_frames_ >= options_.lost_frames || left) {
     out.status = TrackStatus::kLost;
     // Start again from the masks as soon as someone is seen.
     started_ = false;
@@ -503,6 +535,13 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   finish(&out);
   return out;
+}
+
+bool Tracker::InView(const Eigen::Matrix3Xd& joints) const {
+  for (const Camera& camera : cameras_) {
+    if (ShareInView(camera, joints) >= options_.min_in_view) return true;
+  }
+  return false;
 }
 
 void Tracker::ApplyBuild() {

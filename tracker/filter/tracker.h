@@ -90,6 +90,11 @@ struct TrackerOptions {
   int start_layers = 8;           // and its layers
   double lost_iou = 0.2;          // an estimate explaining less than this (mean IoU)...
   int lost_frames = 5;            // ...for this many frames is lost
+  // A person with less than this share of their body (the box of their joints) inside
+  // every image is leaving the view: what shows of them, a foot or an arm, does not place
+  // them (a body almost wholly below a webcam's image fitted the walker's shadow with its
+  // foot). lost_frames such frames in a row, and they have left.
+  double min_in_view = 0.5;
   double region_margin = 0.4;     // where the person may be: the predicted box grown by this
   double mirror_margin = 0.1;     // evidence (cost units) that turns the walk half a cycle...
   int mirror_streak = 5;          // ...once it has fitted better this many frames in a row
@@ -192,6 +197,8 @@ class Tracker {
 
  private:
   std::vector<cv::Rect> Regions(const std::vector<Frame>* frames) const;
+  // Whether a body with these joints is at least min_in_view in some camera's image.
+  bool InView(const Eigen::Matrix3Xd& joints) const;
   // The frame's pose, bone ends, size, width and heading from out->state (as ExactPose).
   void SetEstimate(TrackedFrame* out) const;
   // The build learnt so far, to the body, the state model and the placers.

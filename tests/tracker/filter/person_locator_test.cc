@@ -282,6 +282,41 @@ TEST(PersonLocator, ABodySplitByAnOccluderIsOnePerson) {
   EXPECT_EQ(seen.boxes[0], box);
 }
 
+// Someone entering from a side: the image's side edge cuts the body. A slice (the trailing
+// half, its top a shoulder or an arm) is not whole and has no height, whatever its top
+// looks like; wholly in view again, the person is whole. (On a phone's portrait video an
+// arm alone was placed as a whole adult 4 m away, and a track started there.)
+TEST(PersonLocator, ASliceCutByASideEdgeIsNotWhole) {
+  const Scene& s = Walk();
+  const ClutterScene c = Clutter();
+  const Camera& side = s.cameras[0];
+  const PersonSighting clean = LocatePerson({side}, {c.view.masks[0]});
+  ASSERT_TRUE(clean.found);
+  EXPECT_TRUE(clean.whole);
+  const cv::Rect box = cv::boundingRect(c.view.masks[0]);
+  for (const bool left : {true, false}) {
+    // The image ends through the middle of the body: the columns beyond are not seen.
+    Camera cut = side;
+    cut.width = box.x + box.width / 2;
+    cv::Rect kept(0, 0, cut.width, side.height);
+    if (left) {  // the image starts there instead: its principal point moves
+      kept = cv::Rect(box.x + box.width / 2, 0, side.width - box.x - box.width / 2, side.height);
+      cut.width = kept.width;
+      cut.cx -= kept.x;
+    }
+    const PersonSighting sliced = LocatePerson({cut}, {c.view.masks[0](kept).clone()});
+    SCOPED_TRACE(left ? "cut on the left" : "cut on the right");
+    ASSERT_TRUE(sliced.found);  // feet in view: placed by them
+    EXPECT_TRUE(sliced.feet_seen);
+    EXPECT_FALSE(sliced.whole);
+    EXPECT_EQ(sliced.height_mm, 0);  // its top is not a head
+    // With another camera seeing the person whole, the sighting is whole.
+    const PersonSighting both = LocatePerson({cut, s.cameras[1]}, {c.view.masks[0](kept).clone(), c.view.masks[1]});
+    ASSERT_TRUE(both.found);
+    EXPECT_TRUE(both.whole);
+  }
+}
+
 TEST(PersonLocator, NobodyInViewIsNotFound) {
   const Scene& s = Walk();
   const cv::Mat empty = cv::Mat::zeros(s.cameras[0].height, s.cameras[0].width, CV_8UC1);
