@@ -94,6 +94,9 @@ class ForegroundExtractor {
 
 // Per image of a sequence (BGR, time order): 255 where something moves (see above).
 std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double min_area);
+// The tallest of those regions over the images less their growth, px (0: none, or under
+// 10 images): the tallest person walking through (a shadow beside them included).
+int TallestMoving(const std::vector<cv::Mat>& images, double min_area);
 
 // Removes the connected components smaller than `min_area` of the image from a binary
 // mask (255 = foreground), in place.

@@ -37,6 +37,9 @@ class FrameSource {
   // The next frame (masks and, when `with_images` was asked of the source, images); false
   // at the end. InputError naming the file or device when a frame cannot be read.
   virtual bool Next(Frame* frame) = 0;
+  // The scale of camera c's masks against its camera's image (the images stay full size):
+  // below 1 when the source already made them at a working resolution.
+  virtual double mask_scale(size_t /*camera*/) const { return 1; }
 };
 
 }  // namespace jgpm

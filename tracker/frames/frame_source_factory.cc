@@ -101,6 +101,7 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   options.foreground = spec.foreground;
   options.backgrounds = spec.backgrounds;
   options.max_frames = spec.max_frames;
+  options.person_px = spec.mask_person_px;
   return std::make_unique<VideoFrameSource>(std::move(sources), std::move(cameras), options);
 }
 

@@ -37,6 +37,8 @@ struct FrameSourceSpec {
   bool clip_foreground = false;
   ForegroundOptions foreground;
   std::vector<std::string> backgrounds;
+  double mask_person_px = 0;  // VideoFrameSourceOptions::person_px: a learnt background's
+                              // masks made at the working resolution
   // Live camera.
   int device_width = 640, device_height = 480;
   double device_fps = 30;

@@ -5,8 +5,10 @@
 #include <cmath>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "io/base/error.h"
+#include "tracker/frames/working_resolution.h"
 
 namespace jgpm {
 
@@ -83,8 +85,21 @@ void VideoFrameSource::Learn() {
       }
     }
   }
+  mask_scales_.assign(sources_.size(), 1.0);
+  mask_sizes_.assign(sources_.size(), cv::Size());
   for (size_t c = 0; c < sources_.size(); ++c) {
     if (learning_[c].empty()) ThrowInputError(sources_[c]->name(), "gave no image to learn the background from");
+    // People taller than person_px: the images brought down to the working size first.
+    const int tallest = options_.person_px > 0 && !sources_[c]->live()
+                            ? TallestMoving(learning_[c], options_.foreground.min_area)
+                            : 0;
+    if (tallest > options_.person_px) {
+      mask_scales_[c] = options_.person_px / tallest;
+      const Camera scaled = ScaleCamera(cameras_[c], mask_scales_[c]);
+      mask_sizes_[c] = cv::Size(scaled.width, scaled.height);
+      for (cv::Mat& image : learning_[c]) cv::resize(image, image, mask_sizes_[c], 0, 0, cv::INTER_AREA);
+      foreground_[c] = ForegroundExtractor(options_.foreground, scaled.width, scaled.height);
+    }
     foreground_[c].Learn(learning_[c]);
   }
   learning_.clear();
@@ -175,7 +190,15 @@ bool VideoFrameSource::Next(Frame* frame) {
     for (cv::Mat& image : frame->images) image = cv::Mat();
     return true;
   }
-  for (size_t c = 0; c < n; ++c) frame->masks[c] = foreground_[c].Apply(frame->images[c]);
+  for (size_t c = 0; c < n; ++c) {
+    if (mask_sizes_.empty() || mask_sizes_[c].empty()) {
+      frame->masks[c] = foreground_[c].Apply(frame->images[c]);
+    } else {
+      cv::Mat small;
+      cv::resize(frame->images[c], small, mask_sizes_[c], 0, 0, cv::INTER_AREA);
+      frame->masks[c] = foreground_[c].Apply(small);
+    }
+  }
   // Latency counts the foreground too: it is part of getting from capture to an estimate.
   frame->ready = std::chrono::steady_clock::now();
   frame->latency_ms += std::chrono::duration<double, std::milli>(frame->ready - handed).count();

@@ -61,7 +61,10 @@ WorkingResolutionSource::WorkingResolutionSource(std::unique_ptr<FrameSource> in
     }
   }
   for (size_t c = 0; c < cameras.size(); ++c) {
-    const double s = tallest[c] > options.person_px ? options.person_px / tallest[c] : 1.0;
+    // Masks already made at a working size are kept at it (measured in them, the people
+    // would be about person_px tall: no second resampling).
+    const double made = inner_->mask_scale(c);
+    const double s = made < 1 ? made : tallest[c] > options.person_px ? options.person_px / tallest[c] : 1.0;
     scales_.push_back(s);
     scaled_.push_back(s < 1 ? ScaleCamera(cameras[c], s) : cameras[c]);
   }

@@ -152,7 +152,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     model = ModelOnSkeleton(*model, o.asf);
     tracker_options.known_size = true;
   }
-  std::unique_ptr<FrameSource> made = MakeFrameSource(o.source);
+  FrameSourceSpec spec = o.source;
+  // A learnt background's masks are made at the working resolution, not brought to it.
+  if (o.working.enabled) spec.mask_person_px = o.working.person_px;
+  std::unique_ptr<FrameSource> made = MakeFrameSource(spec);
   const auto* clip = dynamic_cast<const ClipFrameSource*>(made.get());
   const auto* video = dynamic_cast<const VideoFrameSource*>(made.get());
   if (o.truth_start && !clip) ThrowInputError("--init truth", "needs a clip's ground truth (--clip)");

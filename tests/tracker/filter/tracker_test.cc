@@ -400,7 +400,9 @@ TEST(Tracker, KeepsThePersonChosenWhenAnotherWalksBy) {
     std::printf("%s: root error with the choice: max %.0f mm, last %.0f mm; without it: first %.0f mm\n",
                 crossing ? "crossing" : "apart", *std::max_element(kept.begin(), kept.end()), kept.back(),
                 strongest.front());
-    if (!crossing) EXPECT_GT(strongest.front(), 500);  // the other walker is the strongest
+    if (!crossing) {
+      EXPECT_GT(strongest.front(), 500);  // the other walker is the strongest
+    }
     for (int k = 0; k < kFrames; ++k) EXPECT_LT(kept[k], 400) << (crossing ? "crossing, frame " : "apart, frame ") << k;
   }
 }

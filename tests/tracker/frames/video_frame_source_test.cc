@@ -3,9 +3,13 @@
 // did not see is handed out as dropped (predicted by the tracker), never as an empty view.
 #include "tracker/frames/video_frame_source.h"
 
+#include <random>
+
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "io/base/error.h"
+#include "tracker/frames/working_resolution.h"
 
 namespace jgpm {
 namespace {
@@ -99,6 +103,88 @@ TEST(VideoFrameSource, StopsAtMaxFrames) {
   EXPECT_TRUE(source.Next(&frame));
   EXPECT_TRUE(source.Next(&frame));
   EXPECT_FALSE(source.Next(&frame));
+}
+
+// A 1280x720 scene (a fixed random texture) with a person-sized bright block 400 px tall
+// walking across it, 12 px a frame, 60 frames.
+class WalkerSource : public ImageSource {
+ public:
+  static constexpr int kWidth = 1280, kHeight = 720, kFrames = 60, kTall = 400, kWide = 120;
+  WalkerSource() : scene_(kHeight, kWidth, CV_8UC3) {
+    cv::randu(scene_, cv::Scalar::all(40), cv::Scalar::all(120));
+    cv::GaussianBlur(scene_, scene_, cv::Size(7, 7), 0);
+  }
+  const std::string& name() const override { return name_; }
+  int width() const override { return kWidth; }
+  int height() const override { return kHeight; }
+  double fps() const override { return 30; }
+  int NumFrames() const override { return kFrames; }
+  static cv::Rect Body(int k) { return cv::Rect(200 + 12 * k, 220, kWide, kTall); }
+  cv::Mat At(int k) const {
+    cv::Mat image = scene_.clone();
+    image(Body(k)).setTo(cv::Scalar(230, 200, 180));
+    return image;
+  }
+  bool Read(Image* image) override {
+    if (next_ >= kFrames) return false;
+    image->bgr = At(next_);
+    image->time_s = next_ / 30.0;
+    image->index = next_++;
+    return true;
+  }
+  std::vector<cv::Mat> Sample(int n) override {
+    std::vector<cv::Mat> images;
+    for (int i = 0; i < n && i < kFrames; ++i) images.push_back(At(i * kFrames / std::min(n, kFrames)));
+    return images;
+  }
+
+ private:
+  std::string name_ = "walker";
+  cv::Mat scene_;
+  int next_ = 0;
+};
+
+double Iou(const cv::Mat& a, const cv::Mat& b) {
+  return static_cast<double>(cv::countNonZero(a & b)) / std::max(1, cv::countNonZero(a | b));
+}
+
+// A learnt background's masks made at the working resolution: the person brought to
+// about person_px tall (the scale from the moving regions of the learning images), the
+// images handed on at full size, the mask the walker's (against the block drawn at that
+// size), and the working-resolution source on top keeping that size rather than scaling
+// again. With person_px 0, full size.
+TEST(VideoFrameSource, MakesALearntBackgroundsMasksAtTheWorkingResolution) {
+  const Camera camera = CameraOf(WalkerSource::kWidth, WalkerSource::kHeight);
+  for (const double person_px : {0.0, 200.0}) {
+    SCOPED_TRACE(person_px);
+    std::vector<std::unique_ptr<ImageSource>> sources;
+    sources.push_back(std::make_unique<WalkerSource>());
+    VideoFrameSourceOptions options;
+    options.person_px = person_px;
+    auto inner = std::make_unique<VideoFrameSource>(std::move(sources), std::vector<Camera>{camera}, options);
+    const VideoFrameSource* video = inner.get();
+    WorkingResolutionSource source(std::move(inner), {}, false);
+    const double s = video->mask_scale(0);
+    if (person_px == 0) {
+      EXPECT_EQ(s, 1.0);
+    } else {
+      EXPECT_NEAR(s * WalkerSource::kTall, person_px, 0.1 * person_px);
+    }
+    // What the tracker sees: the masks' size and camera, scaled by the same s (once).
+    EXPECT_NEAR(source.scales()[0], s * (person_px == 0 ? 200.0 / WalkerSource::kTall : 1.0), 0.02);
+    const Camera& seen = source.cameras()[0];
+    Frame frame;
+    double worst = 1;
+    for (int k = 0; source.Next(&frame); ++k) {
+      ASSERT_EQ(frame.images[0].size(), cv::Size(WalkerSource::kWidth, WalkerSource::kHeight));
+      ASSERT_EQ(frame.masks[0].size(), cv::Size(seen.width, seen.height));
+      if (k < 5) continue;  // MOG2 settles
+      cv::Mat truth = cv::Mat::zeros(WalkerSource::kHeight, WalkerSource::kWidth, CV_8UC1);
+      truth(WalkerSource::Body(k)).setTo(255);
+      worst = std::min(worst, Iou(frame.masks[0], ScaleMask(truth, frame.masks[0].size())));
+    }
+    EXPECT_GT(worst, 0.9);
+  }
 }
 
 }  // namespace
