@@ -273,6 +273,18 @@ std::vector<std::string> SplitCommas(const std::string& text) {
   return parts;
 }
 
+// FILE[,FILE...]: every one an existing file.
+CLI::Validator FileList(const std::string& what, const std::string& name) {
+  return CLI::Validator(
+      [what](std::string& text) {
+        for (const std::string& part : SplitCommas(text)) {
+          if (!fs::is_regular_file(part)) return "expected " + what + "; '" + part + "' is no file";
+        }
+        return std::string();
+      },
+      name + "[," + name + "...]");
+}
+
 void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& read_walkers) {
   WalkerRequest request;
   for (const std::string& take : a.walkers) request.takes.push_back(SplitCommas(take));
@@ -454,26 +466,12 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
   calibrate->add_option("--camera", a->camera,
                         "camera YAML whose intrinsics and lens distortion to keep (a chessboard's); several cameras: "
                         "one per camera, comma-separated")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            for (const std::string& part : SplitCommas(text)) {
-              if (!std::filesystem::is_regular_file(part)) return "expected a camera YAML; '" + part + "' is no file";
-            }
-            return std::string();
-          },
-          "YAML[,YAML...]"))
+      ->check(FileList("a camera YAML", "YAML"))
       ->needs(walkers);
   calibrate->add_option("--background", a->background,
                         "picture of the empty scene (default: learnt from the video); several cameras: one per camera, "
                         "comma-separated")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            for (const std::string& part : SplitCommas(text)) {
-              if (!std::filesystem::is_regular_file(part)) return "expected an image; '" + part + "' is no file";
-            }
-            return std::string();
-          },
-          "IMAGE[,IMAGE...]"))
+      ->check(FileList("an image", "IMAGE"))
       ->needs(walkers);
   calibrate->add_option("--fps", a->fps, "the frame rate of --walkers folders of frames")
       ->check(CLI::PositiveNumber)
