@@ -86,16 +86,20 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
   return moving;
 }
 
-int TallestMoving(const std::vector<cv::Mat>& images, double min_area) {
-  int tallest = 0;
-  if (images.size() < 10) return tallest;  // as Learn: too few to tell what moves
+int MovingPersonHeight(const std::vector<cv::Mat>& images, double min_area) {
+  if (images.size() < 10) return 0;  // as Learn: too few to tell what moves
+  std::vector<int> tallest;  // per image with a region
   for (const cv::Mat& m : MovingRegions(images, min_area)) {
     cv::Mat labels, stats, centroids;
     const int count = cv::connectedComponentsWithStats(m, labels, stats, centroids, 8, CV_32S);
-    for (int k = 1; k < count; ++k) tallest = std::max(tallest, stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    int most = 0;
+    for (int k = 1; k < count; ++k) most = std::max(most, stats.at<int>(k, cv::CC_STAT_HEIGHT));
+    if (most > 0) tallest.push_back(most);
   }
+  if (tallest.empty()) return 0;
+  std::nth_element(tallest.begin(), tallest.begin() + tallest.size() / 2, tallest.end());
   // The regions were grown twice by 2% of the image's height, at the top and the bottom.
-  return std::max(0, tallest - static_cast<int>(std::lround(0.08 * images[0].rows)));
+  return std::max(0, tallest[tallest.size() / 2] - static_cast<int>(std::lround(0.08 * images[0].rows)));
 }
 
 void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images) {

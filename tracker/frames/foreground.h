@@ -94,9 +94,11 @@ class ForegroundExtractor {
 
 // Per image of a sequence (BGR, time order): 255 where something moves (see above).
 std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double min_area);
-// The tallest of those regions over the images less their growth, px (0: none, or under
-// 10 images): the tallest person walking through (a shadow beside them included).
-int TallestMoving(const std::vector<cv::Mat>& images, double min_area);
+// How tall the people walking through are, px (0: nobody, or under 10 images): over the
+// images with a moving region, the median of their tallest, less the regions' growth. Not
+// the tallest of all: people at different depths stack in a view from above, and their
+// regions merge now and then (vtest.avi's reached 5 people's height).
+int MovingPersonHeight(const std::vector<cv::Mat>& images, double min_area);
 
 // Removes the connected components smaller than `min_area` of the image from a binary
 // mask (255 = foreground), in place.

@@ -91,7 +91,7 @@ void VideoFrameSource::Learn() {
     if (learning_[c].empty()) ThrowInputError(sources_[c]->name(), "gave no image to learn the background from");
     // People taller than person_px: the images brought down to the working size first.
     const int tallest = options_.person_px > 0 && !sources_[c]->live()
-                            ? TallestMoving(learning_[c], options_.foreground.min_area)
+                            ? MovingPersonHeight(learning_[c], options_.foreground.min_area)
                             : 0;
     if (tallest > options_.person_px) {
       mask_scales_[c] = options_.person_px / tallest;

@@ -26,7 +26,7 @@ struct VideoFrameSourceOptions {
   std::vector<std::string> backgrounds;  // per camera an empty-scene image; empty: learn it
   int max_frames = 0;                    // 0: all
   // > 0: when the background is learnt from a file or folder, and the people moving in its
-  // learning images are taller than this, each image is brought down to where they are
+  // learning images are taller than this (MovingPersonHeight), each image is brought down to where they are
   // this tall before background subtraction (working_resolution.h's rule, its person_px),
   // and the masks come at that size (mask_scale): subtracting at full size cost 2-3 times
   // the tracking at 720x1280. A live camera, or a given background, stays full size.
