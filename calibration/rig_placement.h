@@ -20,10 +20,9 @@
 // walker pairs: there are few, so all are tried). A placement needs two of the camera's
 // walkers matched: one straight walk maps onto any other of its length by some similarity,
 // so one walker cannot tell a right placement from clocks that disagree. And it must agree
-// with what the placed cameras saw: most people it puts in their view must be there. Cameras are
-// placed one at a time, the one
-// with most matches first, against every camera already placed: one that shares no walker
-// with cam0 is placed through another.
+// with what the placed cameras saw: most people it puts in their view must be there.
+// Cameras are placed one at a time, the one with most matches first, against every camera
+// already placed: one that shares no walker with cam0 is placed through another.
 //
 // Then every camera is refined with all the others (Ceres): its own calibration is a
 // Gaussian prior on its focal length, tilt, roll and height (the fit's covariance), and
