@@ -30,18 +30,6 @@ struct Sighting {
   Eigen::Vector2d ideal = Eigen::Vector2d::Zero();  // the foot pixel, walker_camera.h's
 };
 
-// The foot pixel's ray down to the foot point's height; false when it does not fall there.
-bool FloorPoint(const Camera& camera, const Eigen::Vector2d& foot_px, double foot_height_mm, Eigen::Vector2d* floor) {
-  const Eigen::Vector3d ray = camera.PixelRaysInWorld(foot_px).col(0);
-  const Eigen::Vector3d centre = camera.CentreInWorld();
-  if (!(ray.y() < -1e-6)) return false;
-  const double t = (foot_height_mm - centre.y()) / ray.y();
-  if (!(t > 0)) return false;
-  const Eigen::Vector3d point = centre + t * ray;
-  *floor = {point.x(), point.z()};
-  return floor->allFinite();
-}
-
 // A similarity of the floor: p -> scale * rotation * p + shift.
 struct Similarity {
   double scale = 1;
@@ -430,7 +418,11 @@ RigPlacement PlaceRig(const std::vector<RigCamera>& cameras, const RigPlacementO
     for (const HeadFoot& point : cameras[k].points) {
       Sighting s{point.frame, point.walker};
       s.ideal = IdealPixel(cameras[k].calibration.camera, point.foot_px);
-      if (FloorPoint(cameras[k].calibration.camera, point.foot_px, options.foot_height_mm, &s.floor)) {
+      // In the camera's own world: its calibration, not turned or shifted.
+      constexpr double kOwnPlace[3] = {0, 0, 0};
+      if (FloorInRig(cameras[k].calibration.parameters.data(), kOwnPlace, s.ideal, options.foot_height_mm,
+                     s.floor.data()) &&
+          s.floor.allFinite()) {
         sightings[k].push_back(s);
       }
     }
