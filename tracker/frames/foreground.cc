@@ -86,10 +86,9 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
   return moving;
 }
 
-int MovingPersonHeight(const std::vector<cv::Mat>& images, double min_area) {
-  if (images.size() < 10) return 0;  // as Learn: too few to tell what moves
+int MovingPersonHeight(const std::vector<cv::Mat>& moving) {
   std::vector<int> tallest;  // per image with a region
-  for (const cv::Mat& m : MovingRegions(images, min_area)) {
+  for (const cv::Mat& m : moving) {
     cv::Mat labels, stats, centroids;
     const int count = cv::connectedComponentsWithStats(m, labels, stats, centroids, 8, CV_32S);
     int most = 0;
@@ -99,17 +98,19 @@ int MovingPersonHeight(const std::vector<cv::Mat>& images, double min_area) {
   if (tallest.empty()) return 0;
   std::nth_element(tallest.begin(), tallest.begin() + tallest.size() / 2, tallest.end());
   // The regions were grown twice by 2% of the image's height, at the top and the bottom.
-  return std::max(0, tallest[tallest.size() / 2] - static_cast<int>(std::lround(0.08 * images[0].rows)));
+  return std::max(0, tallest[tallest.size() / 2] - static_cast<int>(std::lround(0.08 * moving[0].rows)));
 }
 
-void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images) {
+void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images, const std::vector<cv::Mat>& found) {
   JGPM_CHECK(!images.empty());
   const int n = static_cast<int>(images.size());
   const size_t pixels = static_cast<size_t>(width_) * height_;
   for (const cv::Mat& image : images) JGPM_CHECK(image.type() == CV_8UC3 && image.isContinuous() && image.total() == pixels);
   // Fewer than 10 images cannot spare any: the plain median.
-  const std::vector<cv::Mat> moving =
-      options_.exclude_moving && n >= 10 ? MovingRegions(images, options_.min_area) : std::vector<cv::Mat>();
+  JGPM_CHECK(found.empty() || found.size() == images.size());
+  const std::vector<cv::Mat> moving = !options_.exclude_moving || n < 10 ? std::vector<cv::Mat>()
+                                      : found.empty()                    ? MovingRegions(images, options_.min_area)
+                                                                         : found;
   // At least this many images must show a pixel still for their median to be its scene.
   const int enough = std::max(3, n / 20);
   cv::Mat median(height_, width_, CV_8UC3);

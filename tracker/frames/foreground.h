@@ -71,7 +71,8 @@ class ForegroundExtractor {
  public:
   ForegroundExtractor(const ForegroundOptions& options, int width, int height);
   // The scene without the person: the median of `images` (BGR, the extractor's size).
-  void Learn(const std::vector<cv::Mat>& images);
+  // `moving`: their MovingRegions when already found (else found here).
+  void Learn(const std::vector<cv::Mat>& images, const std::vector<cv::Mat>& moving = {});
   // The scene from a given empty-scene image.
   void SetBackground(const cv::Mat& background);
   const cv::Mat& background() const { return background_; }
@@ -94,11 +95,11 @@ class ForegroundExtractor {
 
 // Per image of a sequence (BGR, time order): 255 where something moves (see above).
 std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double min_area);
-// How tall the people walking through are, px (0: nobody, or under 10 images): over the
-// images with a moving region, the median of their tallest, less the regions' growth. Not
-// the tallest of all: people at different depths stack in a view from above, and their
-// regions merge now and then (vtest.avi's reached 5 people's height).
-int MovingPersonHeight(const std::vector<cv::Mat>& images, double min_area);
+// How tall the people walking through are, px, from a sequence's MovingRegions (0: nobody):
+// over the images with a moving region, the median of their tallest, less the regions'
+// growth. Not the tallest of all: people at different depths stack in a view from above,
+// and their regions merge now and then (vtest.avi's reached 5 people's height).
+int MovingPersonHeight(const std::vector<cv::Mat>& moving);
 
 // Removes the connected components smaller than `min_area` of the image from a binary
 // mask (255 = foreground), in place.

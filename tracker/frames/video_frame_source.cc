@@ -89,18 +89,22 @@ void VideoFrameSource::Learn() {
   mask_sizes_.assign(sources_.size(), cv::Size());
   for (size_t c = 0; c < sources_.size(); ++c) {
     if (learning_[c].empty()) ThrowInputError(sources_[c]->name(), "gave no image to learn the background from");
-    // People taller than person_px: the images brought down to the working size first.
-    const int tallest = options_.person_px > 0 && !sources_[c]->live()
-                            ? MovingPersonHeight(learning_[c], options_.foreground.min_area)
-                            : 0;
+    // People taller than person_px: the images brought down to the working size first
+    // (their moving regions found again there); else the regions measured are Learn's.
+    std::vector<cv::Mat> moving;
+    if (options_.person_px > 0 && !sources_[c]->live() && learning_[c].size() >= 10) {
+      moving = MovingRegions(learning_[c], options_.foreground.min_area);
+    }
+    const int tallest = MovingPersonHeight(moving);
     if (tallest > options_.person_px) {
+      moving.clear();
       mask_scales_[c] = options_.person_px / tallest;
       const Camera scaled = ScaleCamera(cameras_[c], mask_scales_[c]);
       mask_sizes_[c] = cv::Size(scaled.width, scaled.height);
       for (cv::Mat& image : learning_[c]) cv::resize(image, image, mask_sizes_[c], 0, 0, cv::INTER_AREA);
       foreground_[c] = ForegroundExtractor(options_.foreground, scaled.width, scaled.height);
     }
-    foreground_[c].Learn(learning_[c]);
+    foreground_[c].Learn(learning_[c], moving);
   }
   learning_.clear();
   learnt_ = true;
