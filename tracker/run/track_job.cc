@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -21,7 +22,9 @@
 #include "prior/model/inference.h"
 #include "prior/model/model_file.h"
 #include "tracker/frames/clip_source.h"
+#include "tracker/frames/prefetch_source.h"
 #include "tracker/frames/video_frame_source.h"
+#include "tracker/run/overlay_videos.h"
 #include "tracker/run/pose_table_cache.h"
 
 namespace jgpm {
@@ -98,60 +101,30 @@ std::unique_ptr<GaitModel> ModelOnSkeleton(const GaitModel& model, const std::st
   return GaitModel::Create(std::move(data), asf);
 }
 
-namespace {
-
-// Each camera's overlay video, written frame by frame.
-class OverlayWriter {
- public:
-  OverlayWriter(const fs::path& dir, const TrackRun& run, const Tracker& tracker, const Skeleton& skeleton)
-      : run_(run), tracker_(tracker), skeleton_(skeleton), last_(run.cameras.size()) {
-    for (const Camera& camera : run.cameras) {
-      const fs::path path = dir / ("overlay_" + camera.name + ".avi");
-      videos_.emplace_back(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), run.fps,
-                           cv::Size(camera.width, camera.height));
-      if (!videos_.back().isOpened()) ThrowInputError(path.string(), "OpenCV cannot write an MJPG video here");
-    }
-  }
-  // The frame's images with the estimate over them (a dropped frame: the last image,
-  // dimmed); also returned.
-  const std::vector<cv::Mat>& Write(const Frame& frame, const TrackedFrame& f) {
-    capsules_.clear();
-    if (f.state.size()) {
-      tracker_.body().Place(f.joints_mm, f.size * f.width, f.build.widths, &capsules_);
-    }
-    shown_.resize(run_.cameras.size());
-    for (size_t c = 0; c < run_.cameras.size(); ++c) {
-      if (!frame.dropped && c < frame.images.size()) last_[c] = frame.images[c];
-      const cv::Mat image = frame.dropped && !last_[c].empty() ? cv::Mat(last_[c] * 0.5) : last_[c];
-      shown_[c] = OverlayFrame(image, run_.cameras[c], f, capsules_, skeleton_);
-      videos_[c].write(shown_[c]);
-    }
-    return shown_;
-  }
-
- private:
-  const TrackRun& run_;
-  const Tracker& tracker_;
-  const Skeleton& skeleton_;
-  std::vector<cv::VideoWriter> videos_;
-  std::vector<cv::Mat> last_, shown_;
-  std::vector<Capsule> capsules_;
-};
-
-}  // namespace
-
 TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progress) {
   const auto job_started = std::chrono::steady_clock::now();
   const auto finished = [&job_started](TrackJobResult* r) {
     r->wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - job_started).count();
   };
-  // Everything that can be refused is, before the long part.
-  std::unique_ptr<GaitModel> model = ReadModelFile(o.model);
+  // Everything that can be refused is, before the long part. The model and its pose table
+  // are read while the sources open (given backgrounds read or learnt ones learnt, the
+  // first frames read ahead): on a 4-camera clip each took about a quarter of a second on
+  // one core while the other waited. A source's error is named first, then the model's.
   TrackerOptions tracker_options = o.tracker;
-  if (!o.asf.empty()) {
-    model = ModelOnSkeleton(*model, o.asf);
-    tracker_options.known_size = true;
-  }
+  if (!o.asf.empty()) tracker_options.known_size = true;
+  PoseTableOptions table_options = tracker_options.table;
+  table_options.threads = tracker_options.threads;
+  const bool with_table = tracker_options.space == StateSpace::kModel;
+  struct Prior {
+    std::unique_ptr<GaitModel> model;
+    std::shared_ptr<const PoseTable> table;
+  };
+  std::future<Prior> reading = std::async(std::launch::async, [&o, table_options, with_table] {
+    Prior prior{ReadModelFile(o.model), nullptr};
+    if (!o.asf.empty()) prior.model = ModelOnSkeleton(*prior.model, o.asf);
+    if (with_table) prior.table = CachedPoseTable(*prior.model, o.model, o.asf, table_options, o.source.note);
+    return prior;
+  });
   FrameSourceSpec spec = o.source;
   // A learnt background's masks are made at the working resolution, not brought to it.
   if (o.working.enabled) spec.mask_person_px = o.working.person_px;
@@ -177,12 +150,9 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     }
     tracker_options.person.pixel = (p.array() + 0.5) * source->scales()[c] - 0.5;
   }
-  std::shared_ptr<const PoseTable> table;
-  if (tracker_options.space == StateSpace::kModel) {
-    PoseTableOptions table_options = tracker_options.table;
-    table_options.threads = tracker_options.threads;
-    table = CachedPoseTable(*model, o.model, o.asf, table_options, o.source.note);
-  }
+  const Prior prior = reading.get();
+  const std::unique_ptr<GaitModel>& model = prior.model;
+  const std::shared_ptr<const PoseTable>& table = prior.table;
   Tracker tracker(*model, source->cameras(), tracker_options, table);
   TrackJobResult result;
   TrackRun& run = result.run;
@@ -209,8 +179,17 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   // tracked from its masks is decoded for them afterwards (kept out of the tracking time).
   const bool images_now = video || o.source.clip_foreground;
   const fs::path dir = folder ? folder->partial() : fs::path();
-  std::optional<OverlayWriter> overlays;
-  if (folder && o.overlays && images_now) overlays.emplace(dir, run, tracker, model->skeleton());
+  std::optional<OverlayVideos> overlays;
+  if (folder && o.overlays && images_now) overlays.emplace(dir, run.cameras, run.fps, tracker.body(), model->skeleton());
+  // Files and folders are read ahead while the frame before is tracked; a live camera's
+  // newest frame is taken when the tracker is ready for it.
+  std::optional<PrefetchSource> ahead;
+  if (!result.live) {
+    ahead.emplace(source.get(), 2,
+                  video ? std::function<int()>([video] { return video->skipped(); }) : std::function<int()>());
+  }
+  FrameSource* frames = ahead ? static_cast<FrameSource*>(&*ahead) : source.get();
+  const auto skipped_so_far = [&] { return ahead ? ahead->lost() : video ? video->skipped() : 0; };
   const auto started = std::chrono::steady_clock::now();
   double latency_sum = 0;
   int latency_count = 0, frames_seen = 0;
@@ -225,7 +204,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
         result.max_latency_ms = std::max(result.max_latency_ms, f.latency_ms);
       }
     }
-    if (progress) progress(f, source->NumFrames(), video ? video->skipped() : 0);
+    if (progress) progress(f, frames->NumFrames(), skipped_so_far());
     if (folder && o.save_masks && !frame.dropped) {
       for (size_t c = 0; c < run.cameras.size(); ++c) {
         const fs::path path = dir / "masks" / run.cameras[c].name / ClipFrameName(frame.index);
@@ -234,8 +213,11 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
       }
     }
     if (overlays) {
-      const std::vector<cv::Mat>& shown = overlays->Write(frame, f);
-      if (o.show) o.show(shown);
+      if (o.show) {
+        o.show(overlays->AddAndDraw(frame, f));
+      } else {
+        overlays->Add(frame, f);
+      }
     }
   };
   const auto stop = [&] {
@@ -247,13 +229,14 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   if (o.truth_start) {
     tracker.StartAt(TruthGuess(clip->truth(), *model, tracker.state_model()));
     Frame frame;
-    while (!stop() && source->Next(&frame)) {
+    while (!stop() && frames->Next(&frame)) {
       run.frames.push_back(tracker.Step(frame));
       on_frame(frame, run.frames.back());
     }
   } else {
-    run.frames = TrackSource(source.get(), &tracker, on_frame, stop);
+    run.frames = TrackSource(frames, &tracker, on_frame, stop);
   }
+  if (ahead) ahead->Stop();  // the sources' counts below are the reading thread's
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
   result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (video) {
@@ -293,14 +276,14 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     image_options.max_frames = run.frames.back().index + 1;
     image_options.with_images = true;
     ClipFrameSource images(o.source.clip, image_options);
-    OverlayWriter writer(dir, run, tracker, model->skeleton());
+    overlays.emplace(dir, run.cameras, run.fps, tracker.body(), model->skeleton());
     Frame frame;
     for (const TrackedFrame& f : run.frames) {
       if (!images.Next(&frame)) break;
-      writer.Write(frame, f);
+      overlays->Add(frame, f);
     }
   }
-  overlays.reset();  // close the videos before the folder moves
+  if (overlays) overlays->Close();  // the videos written and closed before the folder moves
   folder->Commit();
   for (const char* name : {"poses.json", "tracked.amc", "tracked.asf", "tracked.bvh"}) {
     result.written.push_back(fs::path(o.out) / name);
