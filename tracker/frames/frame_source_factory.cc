@@ -1,6 +1,7 @@
 #include "tracker/frames/frame_source_factory.h"
 
 #include <algorithm>
+#include <future>
 
 #include "io/base/error.h"
 #include "io/video/image_folder.h"
@@ -82,8 +83,15 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   // and checked as it is read.
   const int sample = spec.backgrounds.empty() ? spec.foreground.learning_frames : 0;
   const VideoCheck check = spec.backgrounds.empty() ? VideoCheck::kFirst : VideoCheck::kAsItGoes;
-  for (const std::string& video : spec.videos)
-    sources.push_back(std::make_unique<VideoFileSource>(video, sample, check));
+  // The videos' first passes side by side (each decodes its whole file); the first
+  // camera's error is the one named.
+  std::vector<std::future<std::unique_ptr<ImageSource>>> opening;
+  for (const std::string& video : spec.videos) {
+    opening.push_back(std::async(std::launch::async, [&video, sample, check]() -> std::unique_ptr<ImageSource> {
+      return std::make_unique<VideoFileSource>(video, sample, check);
+    }));
+  }
+  for (auto& video : opening) sources.push_back(video.get());
   if (!spec.images.empty()) sources.push_back(std::make_unique<ImageFolderSource>(spec.images, spec.images_fps));
   for (const std::string& device : spec.devices) sources.push_back(OpenCamera(spec, device));
   std::vector<Camera> cameras;
