@@ -13,12 +13,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A file's bytes, or "" when it cannot be read.
+// A file's bytes, or "" when it cannot be read. Read straight into a string of the file's
+// size: a table is tens of MB, and a stream's growing buffer copied it three times.
 std::string ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return in ? bytes.str() : std::string();
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return {};
+  std::string bytes(static_cast<size_t>(in.tellg()), '\0');
+  in.seekg(0);
+  return in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())) ? bytes : std::string();
 }
 
 }  // namespace
