@@ -37,6 +37,7 @@ bool Camera::Check(std::string* why) const {
                 std::to_string(distortion.size()));
   for (double d : distortion)
     if (!std::isfinite(d)) return fail("distortion coefficient not finite");
+  if (!std::isfinite(clock_offset_s)) return fail("clock offset not finite");
   if (!cam_from_world_rotation.allFinite() || !cam_from_world_translation_mm.allFinite())
     return fail("extrinsics have a non-finite value");
   if (!IsRotation(cam_from_world_rotation))
@@ -268,6 +269,11 @@ CameraFile ParseCameraYaml(const std::string& text, const std::string& source) {
     c.cam_from_world_translation_mm = pose.cam_from_world_translation_mm;
     file.has_extrinsics = true;
   }
+  const cv::FileNode offset = fs["clock_offset_s"];
+  if (!offset.empty() && !offset.isNone()) {
+    if (!offset.isReal() && !offset.isInt()) ThrowInputError(source, "key 'clock_offset_s' must be a number (seconds)");
+    c.clock_offset_s = static_cast<double>(offset);
+  }
   const cv::FileNode error = fs["avg_reprojection_error"];
   if (error.isReal() || error.isInt()) file.avg_reprojection_error_px = static_cast<double>(error);
   std::string why;
@@ -276,6 +282,7 @@ CameraFile ParseCameraYaml(const std::string& text, const std::string& source) {
     std::string key = "camera_matrix";
     if (why.find("distortion") != std::string::npos) key = "distortion_coefficients";
     if (why.find("rotation") != std::string::npos) key = "cam_from_world_rotation";
+    if (why.find("clock") != std::string::npos) key = "clock_offset_s";
     ThrowInputError(source, "key '" + key + "': " + why);
   }
   return file;
@@ -303,6 +310,7 @@ std::string FormatCameraYaml(const CameraFile& file) {
     fs << "cam_from_world_translation_mm"
        << cv::Mat(cv::Vec3d(c.cam_from_world_translation_mm.data()));
   }
+  if (c.clock_offset_s != 0) fs << "clock_offset_s" << c.clock_offset_s;
   if (file.avg_reprojection_error_px >= 0)
     fs << "avg_reprojection_error" << file.avg_reprojection_error_px;
   return fs.releaseAndGetString();

@@ -24,6 +24,10 @@ struct Camera {
   std::vector<double> distortion = std::vector<double>(5, 0.0);
   Eigen::Matrix3d cam_from_world_rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d cam_from_world_translation_mm = Eigen::Vector3d::Zero();
+  // Seconds added to this camera's video times to put them on the rig's clock (cam0's): a
+  // video started 0.4 s after cam0's has 0.4. Found with the placement from the walkers
+  // (rig_placement.h); 0 for cameras recording together.
+  double clock_offset_s = 0;
 
   // False, with the reason, unless every value is finite, the focal lengths and image size
   // are positive, there are 4, 5 or 8 distortion coefficients and the rotation is a
@@ -59,7 +63,8 @@ Camera LookAtCamera(const std::string& name, int width, int height, double focal
 
 // YAML as OpenCV's calibration sample writes it (`camera_matrix`, `distortion_coefficients`,
 // `image_width`, `image_height`, other keys ignored), plus our optional `camera_name`,
-// `cam_from_world_rotation` (3x3) and `cam_from_world_translation_mm` (3x1). A file
+// `cam_from_world_rotation` (3x3), `cam_from_world_translation_mm` (3x1) and
+// `clock_offset_s` (written when not 0). A file
 // without the extrinsics gives a camera at the world origin (has_extrinsics false).
 // InputError naming the file and the missing or wrong key.
 struct CameraFile {

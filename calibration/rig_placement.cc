@@ -221,6 +221,50 @@ std::optional<Candidate> BestPlacement(const std::vector<Sighting>& sightings, c
   return best;
 }
 
+// How tightly a candidate's matches agree: the sum over them of 1 - (distance /
+// match_mm)^2 (RANSAC's MSAC score). Offsets a frame or two from the truth match almost as
+// many sightings (a walker moves 50 mm a frame), but farther apart.
+double Tightness(const Candidate& c, const RigPlacementOptions& options) {
+  double score = 0;
+  for (int i = 0; i < c.matches.size(); ++i) {
+    const double d = (c.similarity(c.matches.from.col(i)) - c.matches.to.col(i)).norm() / options.match_mm;
+    score += std::max(0.0, 1 - d * d);
+  }
+  return score;
+}
+
+// The best placement over the clock offsets within options.max_clock_offset_frames
+// (rig_placement.h): confirmed first, then the tightest; tried every step frames, then
+// frame by frame around the best; ties go to the offset nearest 0. Its offset in `offset`.
+std::optional<Candidate> BestOffsetPlacement(const std::vector<Sighting>& sightings, const PlacedSet& placed,
+                                             const RigPlacementOptions& options, int* offset) {
+  std::optional<Candidate> best;
+  double best_tightness = 0;
+  std::vector<Sighting> shifted;
+  std::vector<bool> tried(2 * options.max_clock_offset_frames + 1, false);
+  auto consider = [&](int d) {
+    if (std::abs(d) > options.max_clock_offset_frames || tried[d + options.max_clock_offset_frames]) return;
+    tried[d + options.max_clock_offset_frames] = true;
+    shifted = sightings;
+    for (Sighting& s : shifted) s.frame += d;
+    std::optional<Candidate> c = BestPlacement(shifted, placed, options);
+    if (!c) return;
+    const double tightness = Tightness(*c, options);
+    const bool confirmed = c->matches.Confirmed(options);
+    if (!best || (confirmed != best->matches.Confirmed(options) ? confirmed : tightness > best_tightness)) {
+      best = std::move(c);
+      best_tightness = tightness;
+      *offset = d;
+    }
+  };
+  *offset = 0;
+  const int step = std::max(1, options.min_shared_frames / 2);
+  for (int d = 0; d <= options.max_clock_offset_frames; d += step) consider(d), consider(-d);
+  const int coarse = *offset;
+  for (int d = 1; d < step; ++d) consider(coarse + d), consider(coarse - d);
+  return best;
+}
+
 // A sighting's floor point in the rig's world: its ideal foot pixel's ray from the camera
 // of `camera` (walker_camera.h) down to `foot_mm`, turned by pose[0] about the vertical and
 // shifted by (pose[1], pose[2]) on the floor.
@@ -439,14 +483,16 @@ RigPlacement PlaceRig(const std::vector<RigCamera>& cameras, const RigPlacementO
     for (int k = 0; k < n; ++k) {
       if (placed[k]) set.Add(Moved(cameras[k].calibration.camera, similarity[k]), in_rig[k], k);
     }
-    int best_camera = -1;
+    int best_camera = -1, best_offset = 0;
     std::optional<Candidate> best;
     for (int k = 0; k < n; ++k) {
       if (placed[k]) continue;
-      std::optional<Candidate> c = BestPlacement(sightings[k], set, options);
+      int offset = 0;
+      std::optional<Candidate> c = BestOffsetPlacement(sightings[k], set, options, &offset);
       if (c && (!best || c->matches.Better(best->matches, options))) {
         best = std::move(c);
         best_camera = k;
+        best_offset = offset;
       }
     }
     if (!best || !best->matches.Confirmed(options)) {
@@ -459,15 +505,20 @@ RigPlacement PlaceRig(const std::vector<RigCamera>& cameras, const RigPlacementO
                     best ? best->matches.size() : 0,
                     best ? static_cast<int>(std::lround(100.0 * best->matches.size() / std::max(1, best->matches.expected))) : 0,
                     options.min_matches, 100 * options.min_seen_share);
+      const std::string clocks =
+          options.max_clock_offset_frames > 0
+              ? "their clocks within " + std::to_string(options.max_clock_offset_frames) + " frames of each other"
+              : "their videos starting together";
       ThrowInputError(where, "cam" + std::to_string(missing) + " shares too few walkers with the cameras placed (" +
-                                 numbers + "): the cameras must see the same people walk by at the same time, their "
-                                 "videos starting together");
+                                 numbers + "): the cameras must see the same people walk by at the same time, " +
+                                 clocks);
     }
     const int k = best_camera;
     const Similarity& s = best->similarity;
     const Matches& m = best->matches;
     PlacedCamera& out = rig.cameras[k];
     out.matches = m.size();
+    out.clock_offset_frames = best_offset;
     std::map<int, int> against;
     for (int c : m.against) ++against[c];
     out.placed_against = std::max_element(against.begin(), against.end(), [](const auto& a, const auto& b) {
@@ -476,6 +527,7 @@ RigPlacement PlaceRig(const std::vector<RigCamera>& cameras, const RigPlacementO
     similarity[k] = s;
     for (Sighting sighting : sightings[k]) {
       sighting.floor = s(sighting.floor);
+      sighting.frame += best_offset;
       in_rig[k].push_back(sighting);
     }
     placed[k] = true;

@@ -9,7 +9,7 @@
 // height (foot_share of a person's height, as in the calibration), so the two cameras'
 // floor tracks of that walker differ by a similarity of the floor: a turn, a shift and a
 // scale (the ratio of the two cameras' height errors). Cameras with synchronised clocks
-// share frame numbers (HeadFoot::frame).
+// share frame numbers (HeadFoot::frame); otherwise each camera's offset is searched for.
 //
 // Which walker in one camera is which in another is not known, and several people may be in
 // view at once. Every pair of walkers, one in the camera being placed and one in a camera
@@ -87,12 +87,19 @@ struct RigPlacementOptions {
   // calibration made with refuse_undetermined off) may be pinned down by the others.
   double max_relative_sd = 0.10;
   double max_angle_sd_deg = 3;
+  // The cameras' clocks may disagree by up to this many frames (videos started by hand):
+  // each camera is placed at the offset within it whose placement matches most (0: the
+  // clocks agree). Offsets are tried every min_shared_frames / 2 frames, then frame by
+  // frame around the best: a walker moves about 50 mm a frame, so a placement a few frames
+  // off still matches most sightings within match_mm.
+  int max_clock_offset_frames = 0;
 };
 
 struct PlacedCamera {
   Camera camera;           // in the rig's world, named as its calibration's
   int placed_against = -1; // the placed camera it shared the most matches with (cam0: -1)
   int matches = 0;         // its sightings matched with placed cameras' when it was placed
+  int clock_offset_frames = 0;  // added to its frame numbers puts them on cam0's clock
   double rms_mm = 0;       // its floor points' distance from other cameras' of the same
                            // person, RMS after the joint fit
   // Refined with the others: one standard deviation each (the focal length's 0 when given).

@@ -37,6 +37,7 @@ struct CalibrateArguments {
   std::string background;
   std::string camera;  // intrinsics to keep
   double person_height_m = 1.70;
+  double max_clock_offset_s = 2;
   int max_frames = 0;
   double fps = 0;
 };
@@ -239,7 +240,9 @@ std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, cons
   RigPlacementOptions options;
   options.person_height_mm = request.person_height_m * 1000;
   options.foot_height_mm = WalkerCalibrationOptions().foot_share * options.person_height_mm;
-  if (evidence[0].fps > 0) options.correlated_frames = std::max(1.0, 0.5 * evidence[0].fps);
+  const double fps = evidence[0].fps > 0 ? evidence[0].fps : 30;
+  options.correlated_frames = std::max(1.0, 0.5 * fps);
+  options.max_clock_offset_frames = static_cast<int>(std::lround(request.max_clock_offset_s * fps));
   const RigPlacement placed = PlaceRig(rig, options);
   std::printf("placed from the walkers they share, and refined together (cam0's floor point is the origin, its "
               "view +z):\n");
@@ -253,9 +256,14 @@ std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, cons
                 c.focal_px.value, c.focal_px.sd);
     if (k > 0) {
       std::printf("; %d sightings matched with cam%d's, %.0f mm RMS apart", c.matches, c.placed_against, c.rms_mm);
+      if (c.clock_offset_frames != 0) {
+        std::printf("; its video started %.2f s (%d frames) %s cam0's", std::abs(c.clock_offset_frames) / fps,
+                    std::abs(c.clock_offset_frames), c.clock_offset_frames > 0 ? "after" : "before");
+      }
     }
     std::printf("\n");
     cameras.push_back(c.camera);
+    cameras.back().clock_offset_s = c.clock_offset_frames / fps;
   }
   return cameras;
 }
@@ -292,6 +300,7 @@ void RunCalibrateFromWalkers(const CalibrateArguments& a, const ReadWalkers& rea
   if (!a.camera.empty()) request.intrinsics = SplitCommas(a.camera);
   request.max_frames = a.max_frames;
   request.person_height_m = a.person_height_m;
+  request.max_clock_offset_s = a.max_clock_offset_s;
   request.fps = a.fps;
   const size_t n = request.takes.front().size();
   // Several cameras: --out is a folder for their camK.yaml (made if missing).
@@ -435,7 +444,7 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
       "length, height, tilt and roll from their heads and feet (no chessboard; calibration/walker_calibration.h); or a "
       "folder of its frames (jgpm capture; with --fps), a synthetic clip folder (jgpm render), its observed masks, or "
       "a live camera, /dev/videoN (fake:VIDEO plays a video as one), for --max-frames (default 900: 30 s at 30 fps). "
-      "Several cameras that see the same people: their videos, started together, comma-separated (A.avi,B.avi; "
+      "Several cameras that see the same people: their videos, comma-separated (A.avi,B.avi; "
       "repeat for more takes): each is calibrated, then all are placed in cam0's world from the walkers they share "
       "(calibration/rig_placement.h) and written to the folder --out as camK.yaml");
   walkers
@@ -461,6 +470,12 @@ void AddCalibrationCommands(CLI::App& app, ReadWalkers read_walkers) {
                        : "expected the walkers' mean height in metres, 1.0-2.5 (e.g. 1.70), got '" + text + "'";
           },
           "METRES"))
+      ->needs(walkers)
+      ->capture_default_str();
+  calibrate->add_option("--max-clock-offset", a->max_clock_offset_s,
+                        "several cameras: how far apart their videos may have started, seconds (0: together); each "
+                        "camera's offset is found with its place and written to its YAML as clock_offset_s")
+      ->check(CLI::Range(0.0, 60.0))
       ->needs(walkers)
       ->capture_default_str();
   calibrate->add_option("--camera", a->camera,

@@ -36,11 +36,12 @@ using ReadWalkers = std::function<WalkerEvidence(const WalkerVideo&)>;
 
 // The cameras from the walkers in their videos (`calibrate --walkers`, `track
 // --calibrate-from-walkers`), printing what was found and each number's uncertainty. Each
-// take is one video per camera, all started together; several takes of one camera are
-// several videos of it. One camera is placed above the world origin looking along +z;
-// several are each calibrated, then placed in cam0's world from the walkers they share
-// (calibration/rig_placement.h). InputError as CalibrateFromWalkers and PlaceRig, or naming
-// a video of another size than its camera's others.
+// take is one video per camera, started within max_clock_offset_s of each other; several
+// takes of one camera are several videos of it. One camera is placed above the world
+// origin looking along +z; several are each calibrated, then placed in cam0's world from
+// the walkers they share (calibration/rig_placement.h). InputError as
+// CalibrateFromWalkers and PlaceRig, or naming a video of another size than its camera's
+// others.
 struct WalkerRequest {
   std::vector<std::vector<std::string>> takes;  // [take][camera]
   std::vector<std::string> backgrounds;         // per camera, or none
@@ -49,6 +50,10 @@ struct WalkerRequest {
   std::vector<std::string> intrinsics;  // per camera, YAML whose intrinsics to keep, or none
   double fps = 0;                       // of folders of frames; asked of a live camera
   int width = 0, height = 0;            // asked of a live camera (0: its default)
+  // Several cameras: how far apart their videos' starts may be, seconds (0: together).
+  // Each camera's offset is found with its placement (one per camera, shared by its
+  // takes) and kept as its Camera::clock_offset_s.
+  double max_clock_offset_s = 2;
 };
 std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, const ReadWalkers& read_walkers);
 

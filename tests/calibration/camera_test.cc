@@ -229,6 +229,7 @@ void ExpectSameCamera(const Camera& a, const Camera& b) {
   EXPECT_EQ(a.distortion, b.distortion);
   EXPECT_EQ(a.cam_from_world_rotation, b.cam_from_world_rotation);
   EXPECT_EQ(a.cam_from_world_translation_mm, b.cam_from_world_translation_mm);
+  EXPECT_EQ(a.clock_offset_s, b.clock_offset_s);
 }
 
 TEST(CameraYaml, FormatThenParseGivesIdenticalValues) {
@@ -240,6 +241,7 @@ TEST(CameraYaml, FormatThenParseGivesIdenticalValues) {
       file.camera.fx = 523.123456789012345;  // needs all 17 digits
       file.has_extrinsics = true;
       file.avg_reprojection_error_px = 0.0412345678901234;
+      file.camera.clock_offset_s = name == "0" ? 0 : -0.4333333333333333;  // written only when not 0
       const CameraFile back = ParseCameraYaml(FormatCameraYaml(file), "memory");
       ExpectSameCamera(back.camera, file.camera);
       EXPECT_TRUE(back.has_extrinsics);
@@ -408,6 +410,10 @@ const test::MalformedCase kMalformed[] = {
      "   rows: 1\n   cols: 2\n   dt: d\n   data: [ 0., -1500. ]", "", "'cam_from_world_translation_mm' is 1x2"},
     {"OnlyTheRotation", kTranslationBlock, "", "", "missing key 'cam_from_world_translation_mm'"},
     {"OnlyTheTranslation", kRotationBlock, "", "", "missing key 'cam_from_world_rotation'"},
+    {"ClockOffsetNotANumber", "camera_name: \"cam0\"", "camera_name: \"cam0\"\nclock_offset_s: \"late\"", "",
+     "'clock_offset_s' must be a number"},
+    {"ClockOffsetNan", "camera_name: \"cam0\"", "camera_name: \"cam0\"\nclock_offset_s: .Nan", "",
+     "'clock_offset_s': clock offset not finite"},
     {"NotYaml", "*", "this is {not [ yaml: at all\n", "", "not an OpenCV YAML file"},
     {"YamlButNotAMap", "*", "%YAML:1.0\n---\n- 1\n- 2\n", "", "not an OpenCV YAML file"},
     // Found by tests/fuzz/camera_yaml_fuzzer: OpenCV allocated rows x cols before reading

@@ -2,7 +2,8 @@
 // three surveillance cameras around a plaza (one of them rolled), a crowd of twelve walkers
 // two or three at a time, each camera calibrated on its own from its view of them and then
 // placed; the rig must match the truth's placement up to the stature prior's scale, and a
-// camera that sees other people, or whose clock disagrees, must be refused.
+// camera that sees other people, or whose clock disagrees, must be refused, unless its
+// clock's offset is searched for, which must then find it.
 #include "calibration/rig_placement.h"
 
 #include <algorithm>
@@ -153,6 +154,41 @@ TEST(PlaceRig, RefusesClocksThatDisagree) {
     ADD_FAILURE() << "one camera placed";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("at least two cameras"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlaceRig, FindsHowFarTheClocksDisagree) {
+  const std::vector<Camera> truth = Truth();
+  std::vector<RigCamera> cameras = Calibrated(truth, test::PlazaWalks());
+  const RigPlacement synchronised = PlaceRig(cameras);
+  // cam1's video started 12 frames late, cam2's 7 frames early.
+  for (HeadFoot& point : cameras[1].points) point.frame -= 12;
+  for (HeadFoot& point : cameras[2].points) point.frame += 7;
+  RigPlacementOptions options;
+  options.max_clock_offset_frames = 45;  // 1.5 s at 30 fps
+  const RigPlacement rig = PlaceRig(cameras, options);
+  EXPECT_EQ(rig.cameras[0].clock_offset_frames, 0);
+  EXPECT_EQ(rig.cameras[1].clock_offset_frames, 12);
+  EXPECT_EQ(rig.cameras[2].clock_offset_frames, -7);
+  // Placed as with synchronised clocks.
+  for (int k = 1; k < 3; ++k) {
+    std::printf("cam%d: clock offset %d frames, yaw %.2f (synchronised %.2f, truth %.2f) deg, floor point (%.0f, %.0f) "
+                "(synchronised (%.0f, %.0f)) mm\n",
+                k, rig.cameras[k].clock_offset_frames, rig.cameras[k].yaw_deg.value,
+                synchronised.cameras[k].yaw_deg.value, YawOf(truth[k]), rig.cameras[k].x_mm.value,
+                rig.cameras[k].z_mm.value, synchronised.cameras[k].x_mm.value, synchronised.cameras[k].z_mm.value);
+    EXPECT_NEAR(rig.cameras[k].yaw_deg.value, synchronised.cameras[k].yaw_deg.value, 0.1);
+    EXPECT_NEAR(rig.cameras[k].x_mm.value, synchronised.cameras[k].x_mm.value, 20);
+    EXPECT_NEAR(rig.cameras[k].z_mm.value, synchronised.cameras[k].z_mm.value, 20);
+    EXPECT_NEAR(rig.cameras[k].tilt_deg.value, synchronised.cameras[k].tilt_deg.value, 0.05);
+  }
+  // Beyond the search: refused, saying how far it looked.
+  options.max_clock_offset_frames = 5;
+  try {
+    PlaceRig(cameras, options);
+    ADD_FAILURE() << "placed with clocks 12 frames apart, searching 5";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("within 5 frames"), std::string::npos) << e.what();
   }
 }
 

@@ -41,6 +41,7 @@ struct TrackArguments {
   bool calibrate_from_walkers = false;
   bool full_resolution = false;
   double person_height_m = 1.70;
+  double max_clock_offset_s = 2;
   double calibration_seconds = 30;
   std::string person = "auto";
 };
@@ -126,7 +127,7 @@ void RunTrack(TrackArguments a) {
   if (a.show) a.job.show = LiveWindows();
   if (a.calibrate_from_walkers) {
     if (!spec.images.empty() || (spec.videos.empty() && spec.devices.size() != 1)) {
-      ThrowInputError("--calibrate-from-walkers", "calibrates from --video files (one per camera, started together) or "
+      ThrowInputError("--calibrate-from-walkers", "calibrates from --video files (one per camera) or "
                                                   "one --device");
     }
     WalkerRequest request;
@@ -141,6 +142,7 @@ void RunTrack(TrackArguments a) {
     }
     request.backgrounds = spec.backgrounds;
     request.person_height_m = a.person_height_m;
+    request.max_clock_offset_s = a.max_clock_offset_s;
     spec.cameras = CalibrateFromWalkerVideos(request, ReadWalkersFromVideo);
   }
   spec.note = [](const std::string& text) {
@@ -327,7 +329,8 @@ void AddTrackCommands(CLI::App& app) {
       "--calibrate-from-walkers", a->calibrate_from_walkers,
       "no calibration: the camera from the people walking in the --video, first, or in the --device's first "
       "--calibration-seconds (jgpm calibrate --walkers; written to OUT/cam0.yaml); several --video files (cameras "
-      "started together): each calibrated, then placed from the walkers they share");
+      "started within --max-clock-offset of each other): each calibrated, then placed from the walkers they share, "
+      "the offsets found pairing their frames");
   from_walkers->excludes(camera);
   track->add_option("--calibration-seconds", a->calibration_seconds,
                     "with --calibrate-from-walkers and a --device: how long to watch the walkers before tracking")
@@ -336,6 +339,12 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track->add_option("--person-height", a->person_height_m, "with --calibrate-from-walkers: the walkers' mean height, m")
       ->check(CLI::Range(1.0, 2.5))
+      ->needs(from_walkers)
+      ->capture_default_str();
+  track->add_option("--max-clock-offset", a->max_clock_offset_s,
+                    "with --calibrate-from-walkers and several videos: how far apart they may have started, seconds "
+                    "(0: together); the offsets found pair their frames")
+      ->check(CLI::Range(0.0, 60.0))
       ->needs(from_walkers)
       ->capture_default_str();
   track->add_flag("--camera-guess", a->job.source.camera_guess,

@@ -125,9 +125,11 @@ bool VideoFrameSource::ReadImage(size_t c, Image* image) {
     image->latency_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
                                                                    replay_[c].front().read).count();
     replay_[c].pop_front();
-    return true;
+  } else if (!sources_[c]->Read(image)) {
+    return false;
   }
-  return sources_[c]->Read(image);
+  image->time_s += cameras_[c].clock_offset_s;  // on the rig's clock
+  return true;
 }
 
 bool VideoFrameSource::Next(Frame* frame) {

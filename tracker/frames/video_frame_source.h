@@ -3,7 +3,8 @@
 // cameras' images are paired by time.
 //
 // Pairing: the first camera sets the frames; every other camera contributes its image
-// nearest in time, if that is within half of the first camera's frame period (a frame
+// nearest in time (its video's time plus its camera's clock_offset_s), if that is within
+// half of the first camera's frame period (a frame
 // seen by every camera within 17 ms at 30 fps). A frame for which some camera has no such
 // image is handed out as dropped (the tracker predicts it rather than read one camera's
 // missing view as nobody there), and counted in unpaired().

@@ -3,7 +3,8 @@
 // several distances and headings (each trial rendered through the rig turned about the
 // vertical and moved, which is the same rig seeing a walk elsewhere on the floor); one
 // calibrated from the clips' masks, both together from their videos (placed from the
-// walkers they share); and every bad request refused on one line with nothing written.
+// walkers they share, also when the second camera's videos started later, which must be
+// found); and every bad request refused on one line with nothing written.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -163,6 +164,42 @@ TEST_F(CalibrateWalkersCli, PlacesTwoCamerasFromTheWalkersTheyShare) {
   EXPECT_LT(Eigen::Vector2d(at.x() - expected.x(), at.z() - expected.z()).norm(),
             0.04 * Eigen::Vector2d(expected.x(), expected.z()).norm())
       << r.out;
+}
+
+// `video` without its first `frames` frames: the same camera's video started that much later.
+void WriteStartedLate(const fs::path& video, int frames, const fs::path& out) {
+  cv::VideoCapture in(video.string());
+  ASSERT_TRUE(in.isOpened()) << video;
+  cv::VideoWriter writer(out.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), in.get(cv::CAP_PROP_FPS),
+                         cv::Size(static_cast<int>(in.get(cv::CAP_PROP_FRAME_WIDTH)),
+                                  static_cast<int>(in.get(cv::CAP_PROP_FRAME_HEIGHT))));
+  ASSERT_TRUE(writer.isOpened()) << out;
+  cv::Mat image;
+  for (int k = 0; in.read(image); ++k)
+    if (k >= frames) writer.write(image);
+}
+
+TEST_F(CalibrateWalkersCli, FindsHowMuchLaterTheSecondCamerasVideosStarted) {
+  // cam1's videos started 9 frames (0.3 s) after cam0's, in every take.
+  std::string walkers;
+  for (size_t k = 0; k < clips_.size(); ++k) {
+    const fs::path late = dir_->path() / ("late" + std::to_string(k) + ".avi");
+    WriteStartedLate(fs::path(clips_[k]) / "cam1.avi", 9, late);
+    walkers += " --walkers " + clips_[k] + "/cam0.avi," + late.string();
+  }
+  const fs::path out = dir_->path() / "late_rig";
+  const Result r = Jgpm("calibrate" + walkers + " --person-height 1.66 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  std::printf("%s", r.out.c_str());  // the figures, for the log
+  EXPECT_NE(r.out.find("its video started 0.30 s (9 frames) after cam0's"), std::string::npos) << r.out;
+  const Camera cam0 = ReadCameraYaml((out / "cam0.yaml").string()).camera;
+  const Camera cam1 = ReadCameraYaml((out / "cam1.yaml").string()).camera;
+  EXPECT_EQ(cam0.clock_offset_s, 0);
+  EXPECT_NEAR(cam1.clock_offset_s, 0.3, 1e-9);
+  // Placed as the truth is (the synchronised test's bounds).
+  Camera truth = Surveillance(0, 0, 1);
+  EXPECT_NEAR(YawOf(cam1), YawOf(truth), 2) << r.out;
+  EXPECT_NEAR(AnglesOf(cam1).tilt_deg, AnglesOf(truth).tilt_deg, 2) << r.out;
 }
 
 TEST_F(CalibrateWalkersCli, BadRequestsGiveOneLineAndWriteNothing) {

@@ -76,6 +76,24 @@ TEST(VideoFrameSource, PairsImagesByTimeAndPredictsWhatOneCameraMissed) {
   EXPECT_EQ(source.unpaired(), 2);
 }
 
+TEST(VideoFrameSource, PairsOnTheRigsClockWhenACamerasVideoStartedLate) {
+  // Camera 1's video started 0.3 s after camera 0's (clock_offset_s 0.3): its image at its
+  // own 0.0 s is camera 0's at 0.3 s. Camera 0's first three frames have no partner.
+  std::vector<std::unique_ptr<ImageSource>> sources;
+  sources.push_back(std::make_unique<ScriptedSource>(std::vector<double>{0.0, 0.1, 0.2, 0.3, 0.4, 0.5}, 10));
+  sources.push_back(std::make_unique<ScriptedSource>(std::vector<double>{0.0, 0.1, 0.2, 0.3}, 10));
+  Camera late = CameraOf(32, 24);
+  late.clock_offset_s = 0.3;
+  VideoFrameSource source(std::move(sources), {CameraOf(32, 24), late}, {});
+  Frame frame;
+  for (int k = 0; k < 6; ++k) {
+    ASSERT_TRUE(source.Next(&frame));
+    EXPECT_EQ(frame.dropped, k < 3) << "frame " << k;
+    if (!frame.dropped) EXPECT_EQ(frame.images[1].at<cv::Vec3b>(0, 0)[0], k - 3) << "frame " << k;
+  }
+  EXPECT_EQ(source.unpaired(), 3);
+}
+
 TEST(VideoFrameSource, RefusesCamerasThatDoNotFitTheirImages) {
   std::vector<std::unique_ptr<ImageSource>> sources;
   sources.push_back(std::make_unique<ScriptedSource>(std::vector<double>{0.0}, 10, 32, 24));
