@@ -25,3 +25,24 @@ endif()
 if(JGPM_BENCHMARKS)
   find_package(benchmark REQUIRED)
 endif()
+
+if(JGPM_PYTHON)
+  # The module's build needs Python's headers and pybind11 (python3-dev, pybind11-dev); its
+  # tests NumPy (python3-numpy). Without pybind11 the module is left out, with a note.
+  # Debian's python3 (its python3-numpy and python3-opencv), unless told otherwise.
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 COMPONENTS Interpreter Development.Module)
+  find_package(pybind11 CONFIG QUIET)
+  if(NOT Python3_FOUND OR NOT pybind11_FOUND)
+    message(STATUS "jgpm: pybind11 or Python's headers not found: the Python module is not built "
+                   "(datasets_scripts/install_deps.sh installs them)")
+    set(JGPM_PYTHON OFF)
+  else()
+    # Where `cmake --install` puts the module, under the install prefix: where Debian's
+    # python3 looks for packages under /usr/local (the default prefix).
+    set(JGPM_PYTHON_INSTALL_DIR "lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages"
+        CACHE STRING "Folder under the install prefix for the Python module")
+  endif()
+endif()

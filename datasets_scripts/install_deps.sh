@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libceres-dev libopencv-dev libnanoflann-dev libv4l-dev
   libopenblas-dev liblapacke-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  python3-dev pybind11-dev python3-numpy python3-opencv
 )
 
 missing=()

@@ -9,7 +9,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 datasets_scripts/install_deps.sh
-datasets_scripts/build.sh --target jgpm
+datasets_scripts/build.sh --target jgpm jgpm_python
+PYTHONPATH=build/python python3 -c 'import jgpm; print("jgpm", jgpm.__version__, "for Python: PYTHONPATH=build/python")'
 
 # Motion data: --data / $JGPM_DATA / ./data/cmu / ../shared/data/cmu; fetch it when online
 # and none is there.

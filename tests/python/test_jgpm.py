@@ -1,0 +1,293 @@
+"""`import jgpm` against independent answers: a PCA model's own basis, finite differences,
+OpenCV's projectPoints, the motion's root translation in its file's units, the jgpm
+command's own reading of the same files; and bad input refused with the file or argument
+named. Run by ctest (tests/CMakeLists.txt) with PYTHONPATH at the built module, JGPM_BINARY
+at the jgpm command and JGPM_DATA (or ../shared/data/cmu) at the CMU trials."""
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+import jgpm
+
+SOURCE = Path(__file__).resolve().parents[2]
+BINARY = os.environ.get("JGPM_BINARY", "jgpm")
+
+
+def cmu_root():
+    for root in (os.environ.get("JGPM_DATA"), SOURCE / "data" / "cmu", SOURCE.parent / "shared" / "data" / "cmu"):
+        if root and (Path(root) / "subjects").is_dir():
+            return Path(root)
+    raise unittest.SkipTest("no CMU data (set JGPM_DATA)")
+
+
+def run_jgpm(*arguments):
+    return subprocess.run([BINARY, *map(str, arguments)], capture_output=True, text=True, check=True).stdout
+
+
+class Fixture(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.temp = tempfile.TemporaryDirectory()
+        cls.dir = Path(cls.temp.name)
+        cls.data = cmu_root()
+        cls.amc = cls.data / "subjects" / "07" / "07_01.amc"
+        cls.asf = cls.data / "subjects" / "07" / "07.asf"
+        cls.models = {}
+        for kind, extra in (("pca", []), ("gpdm", ["--max-iterations", "3"]), ("jgpm", ["--max-iterations", "3"])):
+            path = cls.dir / f"{kind}.json"
+            run_jgpm("train", "--model", kind, *extra, "--data", cls.data, "--out", path)
+            cls.models[kind] = path
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.temp.cleanup()
+
+
+class ModuleTest(unittest.TestCase):
+    def test_version_is_the_commands(self):
+        self.assertEqual(run_jgpm("--version").split()[-1], jgpm.__version__)
+
+    def test_docstrings_show_in_help(self):
+        self.assertIn("(M, 3) -> (M, D)", jgpm.Model.mean_pose.__doc__)
+        self.assertIn("NaN", jgpm.Camera.project.__doc__)
+
+
+class MotionTest(Fixture):
+    def test_an_amc_has_the_commands_frames_and_its_root_where_the_file_puts_it(self):
+        motion = jgpm.read_motion(self.amc)
+        info = run_jgpm("data", "info", self.amc)
+        frames = int(re.search(r"frames (\d+)", info).group(1))
+        self.assertEqual(len(motion.joint_names), int(re.search(r"joints (\d+)", info).group(1)))
+        self.assertEqual(motion.num_frames, frames)
+        self.assertEqual(motion.frames_per_second, 120)
+        joints = motion.joint_positions()
+        self.assertEqual(joints.shape, (frames, len(motion.joint_names), 3))
+        self.assertEqual(motion.joint_names[0], "root")
+        # The root's translation is in the ASF's length unit: 1/0.45 inch (CMU's ":length 0.45").
+        np.testing.assert_allclose(joints[:, 0, :], motion.values[:, :3] * 25.4 / 0.45, rtol=1e-9, atol=1e-9)
+        # A person: the head above the feet by 1.4-2 m in the first frame.
+        head = motion.joint_names.index("head")
+        foot = motion.joint_names.index("ltoes")
+        self.assertTrue(1400 < joints[0, head, 1] - joints[0, foot, 1] < 2000)
+
+    def test_values_are_a_read_only_view(self):
+        motion = jgpm.read_motion(self.amc)
+        values = motion.values
+        self.assertFalse(values.flags.writeable)
+        self.assertIsNotNone(values.base)  # a view of the motion's frames, not a copy
+        with self.assertRaises(ValueError):
+            values[0, 0] = 1
+
+    def test_written_files_read_back_to_the_same_joints(self):
+        motion = jgpm.read_motion(self.amc)
+        amc, bvh = self.dir / "again.amc", self.dir / "again.bvh"
+        motion.write_amc(amc)
+        motion.write_bvh(bvh)
+        again = jgpm.read_motion(amc, asf=self.asf)
+        np.testing.assert_allclose(again.values, motion.values, atol=1e-6)
+        # The BVH, read as its own hierarchy (End Sites at the bones' ends) and as the ASF's.
+        as_bvh = jgpm.read_motion(bvh)
+        as_acclaim = jgpm.read_motion(bvh, asf=self.asf)
+        np.testing.assert_allclose(as_acclaim.joint_positions(), motion.joint_positions(), atol=1e-3)
+        # Through the BVH's own kinematics: a bone without children ends in an End Site at its end.
+        bvh_joints, acclaim_joints = as_bvh.joint_positions(), motion.joint_positions()
+        ends = [name for name in as_bvh.joint_names if name.endswith("_end")]
+        self.assertGreaterEqual(len(ends), 5)  # head, hands' fingers and thumbs, toes
+        for name in ends:
+            np.testing.assert_allclose(bvh_joints[:, as_bvh.joint_names.index(name)],
+                                       acclaim_joints[:, motion.joint_names.index(name[:-4])], atol=1e-3, err_msg=name)
+
+    def test_a_malformed_file_names_itself_and_its_line(self):
+        bad = self.dir / "bad.amc"
+        text = self.amc.read_text().splitlines()
+        text[12] = "root 1 2 x 4 5 6"
+        bad.write_text("\n".join(text) + "\n")
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.read_motion(bad, asf=self.asf)
+        self.assertRegex(str(caught.exception), re.escape(str(bad)) + r":\d+")
+        self.assertIsInstance(caught.exception, ValueError)
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.read_motion(self.dir / "missing.amc", asf=self.asf)
+        self.assertIn("missing.amc", str(caught.exception))
+        with self.assertRaises(jgpm.InputError):
+            jgpm.read_motion(self.dir / "motion.txt")
+        plain = self.dir / "plain.bvh"
+        jgpm.read_motion(self.amc).write_bvh(plain)
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.read_motion(plain).write_amc(self.dir / "x.amc")  # a BVH read without asf=
+        self.assertIn("no Acclaim skeleton", str(caught.exception))
+
+
+class ModelTest(Fixture):
+    def test_a_pca_models_mean_poses_are_its_basis_times_the_latent_point(self):
+        model = jgpm.load_model(self.models["pca"])
+        self.assertEqual(model.kind, "pca")
+        saved = json.loads(Path(self.models["pca"]).read_text())["model"]
+        mean, scale, basis = (np.array(saved[k]) for k in ("channel_mean", "channel_scale", "pca_basis"))
+        xs = np.random.default_rng(1).normal(size=(50, 3))
+        expected = mean + scale * (xs @ basis.T)
+        poses = model.mean_pose(xs)
+        self.assertEqual(poses.shape, (50, model.num_channels))
+        np.testing.assert_allclose(poses, expected, atol=1e-9)
+        np.testing.assert_allclose(model.mean_pose(xs[3]), expected[3], atol=1e-9)  # one point
+        np.testing.assert_allclose(model.latent, np.array(saved["latent"]))
+
+    def test_log_density_gradients_match_finite_differences(self):
+        for kind in ("pca", "gpdm", "jgpm"):
+            model = jgpm.load_model(self.models[kind])
+            xs = model.latent[::97] + 0.05
+            values, gradients = model.log_density(xs, gradient=True)
+            np.testing.assert_allclose(values, model.log_density(xs))
+            h = 1e-6
+            for d in range(3):
+                step = np.zeros(3)
+                step[d] = h
+                numeric = (model.log_density(xs + step) - model.log_density(xs - step)) / (2 * h)
+                np.testing.assert_allclose(gradients[:, d], numeric, rtol=1e-4, atol=1e-4, err_msg=f"{kind}, dim {d}")
+
+    def test_batches_are_the_single_points(self):
+        model = jgpm.load_model(self.models["gpdm"])
+        xs = model.latent[:7] * 1.1
+        for i in range(7):
+            np.testing.assert_allclose(model.mean_pose(xs)[i], model.mean_pose(xs[i]), atol=1e-12)
+            np.testing.assert_allclose(model.next_latent(xs)[i], model.next_latent(xs[i]), atol=1e-12)
+            self.assertAlmostEqual(model.log_density(xs)[i], model.log_density(xs[i]), places=12)
+        self.assertTrue(model.has_dynamics)
+        # Along the dynamics the next point of a training point is near the training next.
+        step = np.linalg.norm(model.latent[1] - model.latent[0])
+        self.assertLess(np.linalg.norm(model.next_latent(model.latent[0]) - model.latent[1]), 3 * step + 1e-9)
+        pca = jgpm.load_model(self.models["pca"])
+        np.testing.assert_allclose(pca.next_latent(xs), xs)  # no dynamics: the point itself
+
+    def test_joint_positions_of_a_mean_pose_stand_like_a_person(self):
+        model = jgpm.load_model(self.models["pca"])
+        poses = model.mean_pose(model.latent[:4])
+        joints = model.joint_positions(poses)
+        self.assertEqual(joints.shape[0], 4)
+        self.assertEqual(joints.shape[2], 3)
+        np.testing.assert_allclose(model.joint_positions(poses[2]), joints[2])
+        height = joints[:, :, 1].max(axis=1) - joints[:, :, 1].min(axis=1)
+        self.assertTrue(np.all((height > 1300) & (height < 2000)), height)
+
+    def test_the_manifold_round_trips_in_the_jgpm_family_only(self):
+        model = jgpm.load_model(self.models["jgpm"])
+        self.assertTrue(model.has_manifold)
+        for phase in (0.1, 0.45, 0.8):
+            x = model.manifold_to_latent(phase, 0.0, 1.0)
+            back = model.latent_to_manifold(x)
+            self.assertAlmostEqual(back[0], phase, places=3)
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.load_model(self.models["pca"]).manifold_to_latent(0.1, 0, 1)
+        self.assertIn("no gait manifold", str(caught.exception))
+
+    def test_bad_arrays_and_files_are_refused_by_name(self):
+        model = jgpm.load_model(self.models["pca"])
+        with self.assertRaises(TypeError) as caught:
+            model.mean_pose(np.zeros((5, 2)))
+        self.assertIn("latent: expected an array of shape (M, 3)", str(caught.exception))
+        self.assertIn("got (5 x 2)", str(caught.exception))
+        with self.assertRaises(ValueError) as caught:
+            model.mean_pose([[0.0, float("nan"), 0.0]])
+        self.assertIn("NaN", str(caught.exception))
+        with self.assertRaises(TypeError):
+            model.mean_pose([["a", "b", "c"]])
+        np.testing.assert_allclose(model.mean_pose(np.zeros((2, 3), np.float32)), model.mean_pose(np.zeros((2, 3))))
+        not_a_model = self.dir / "not_a_model.json"
+        not_a_model.write_text('{"format": "something else"}')
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.load_model(not_a_model)
+        self.assertIn("not_a_model.json", str(caught.exception))
+
+
+class ExampleTest(Fixture):
+    def test_the_example_sees_a_walk_through_a_camera(self):
+        # 4 m in front of the walker's pelvis (the origin), looking at it along -z: image
+        # right is world +x, image down world -y.
+        camera = self.dir / "front.yaml"
+        rotation = np.diag([1.0, -1.0, -1.0])
+        camera.write_text(CameraTest.yaml(rotation, -rotation @ np.array([0.0, 0.0, 4000.0])))
+        out = self.dir / "walk.csv"
+        printed = subprocess.run([sys.executable, SOURCE / "tracker" / "python" / "example.py", self.models["jgpm"],
+                                  camera, out], capture_output=True, text=True, check=True).stdout
+        self.assertIn("60 frames", printed)
+        rows = out.read_text().splitlines()
+        self.assertEqual(len(rows), 61)
+        # The walker stands in front of the camera: every joint in the image.
+        values = np.array([[float(v) for v in row.split(",")[1:]] for row in rows[1:]])
+        self.assertTrue(np.all((values[:, 0::2] > 0) & (values[:, 0::2] < 640)))
+        self.assertTrue(np.all((values[:, 1::2] > 0) & (values[:, 1::2] < 480)))
+
+
+class CameraTest(unittest.TestCase):
+    @staticmethod
+    def yaml(rotation=None, translation=(120.0, 900.0, 4000.0)):
+        """A 640x480 camera with lens distortion; by default 4 m from the origin, turned and tilted."""
+        import cv2
+        if rotation is None:
+            rotation, _ = cv2.Rodrigues(np.array([2.9, 0.2, -0.1]))
+        numbers = lambda values: ", ".join(repr(float(v)) for v in np.ravel(values))
+        return f"""%YAML:1.0
+---
+camera_name: "side"
+image_width: 640
+image_height: 480
+camera_matrix: !!opencv-matrix
+   rows: 3
+   cols: 3
+   dt: d
+   data: [ 520., 0., 318.5, 0., 515., 241.25, 0., 0., 1. ]
+distortion_coefficients: !!opencv-matrix
+   rows: 1
+   cols: 5
+   dt: d
+   data: [ -0.21, 0.06, 0.001, -0.0015, 0.01 ]
+cam_from_world_rotation: !!opencv-matrix
+   rows: 3
+   cols: 3
+   dt: d
+   data: [ {numbers(rotation)} ]
+cam_from_world_translation_mm: !!opencv-matrix
+   rows: 3
+   cols: 1
+   dt: d
+   data: [ {numbers(translation)} ]
+clock_offset_s: 0.25
+"""
+
+    def test_projection_is_opencvs(self):
+        import cv2
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "side.yaml"
+            path.write_text(self.yaml())
+            camera = jgpm.Camera.from_yaml(str(path))
+        self.assertEqual((camera.name, camera.width, camera.height), ("side", 640, 480))
+        self.assertEqual(camera.clock_offset_s, 0.25)
+        points = np.random.default_rng(2).uniform([-1500, 0, -1500], [1500, 1800, 1500], size=(200, 3))
+        rvec, _ = cv2.Rodrigues(camera.rotation)
+        expected, _ = cv2.projectPoints(points, rvec, camera.translation_mm, camera.camera_matrix,
+                                        np.array(camera.distortion))
+        np.testing.assert_allclose(camera.project(points), expected.reshape(-1, 2), atol=1e-6)
+        np.testing.assert_allclose(camera.project(points[5]), expected[5, 0], atol=1e-6)
+        np.testing.assert_allclose(camera.centre_mm, -camera.rotation.T @ camera.translation_mm)
+        behind = camera.centre_mm - 1000 * camera.rotation[2]  # a metre behind the camera
+        self.assertTrue(np.all(np.isnan(camera.project(behind))))
+
+    def test_a_bad_yaml_names_its_key(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = Path(d) / "bad.yaml"
+            path.write_text(self.yaml().replace("clock_offset_s: 0.25", "clock_offset_s: late"))
+            with self.assertRaises(jgpm.InputError) as caught:
+                jgpm.Camera.from_yaml(str(path))
+            self.assertIn("bad.yaml", str(caught.exception))
+            self.assertIn("clock_offset_s", str(caught.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()

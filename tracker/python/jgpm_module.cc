@@ -1,0 +1,337 @@
+// `import jgpm`: the library's motions, priors and cameras for Python, NumPy arrays in and
+// out. The C++ stays the implementation; these are thin bindings. A C++ InputError is a
+// Python jgpm.InputError (a ValueError) with the same one-line message; arrays of the
+// wrong shape or dtype are refused with a TypeError naming the argument and the shape
+// expected; long calls release the GIL. Stubs: jgpm.pyi beside the module.
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "calibration/camera.h"
+#include "io/base/error.h"
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "io/mocap/bvh.h"
+#include "io/mocap/bvh_conversion.h"
+#include "io/mocap/kinematics.h"
+#include "io/mocap/motion_file.h"
+#include "prior/model/gait_model.h"
+#include "prior/model/model_file.h"
+#include "prior/model/model_kind.h"
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+
+namespace jgpm {
+namespace {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+// A C-contiguous float64 array; other dtypes are converted (int, float32), anything that
+// is not a number refused.
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// `a` as rows x `cols` (a single point of `cols` values is one row). TypeError naming
+// `what` otherwise.
+Eigen::Map<const RowMatrix> Rows(const Array& a, int cols, const char* what) {
+  const bool one = a.ndim() == 1 && a.shape(0) == cols;
+  if (!one && !(a.ndim() == 2 && a.shape(1) == cols)) {
+    std::string shape;
+    for (py::ssize_t d = 0; d < a.ndim(); ++d) shape += (d ? " x " : "") + std::to_string(a.shape(d));
+    throw py::type_error(std::string(what) + ": expected an array of shape (M, " + std::to_string(cols) + ") or (" +
+                         std::to_string(cols) + ",), got (" + shape + ")");
+  }
+  const Eigen::Index rows = one ? 1 : a.shape(0);
+  for (Eigen::Index i = 0; i < rows * cols; ++i) {
+    if (!std::isfinite(a.data()[i])) throw py::value_error(std::string(what) + ": holds a NaN or infinite value");
+  }
+  return Eigen::Map<const RowMatrix>(a.data(), rows, cols);
+}
+
+// A motion as read: an Acclaim skeleton and its frames, or a BVH file's own hierarchy.
+struct PyMotion {
+  std::optional<Skeleton> skeleton;  // Acclaim
+  Motion motion;
+  std::optional<Bvh> bvh;  // BVH read without a skeleton
+
+  int NumFrames() const { return bvh ? static_cast<int>(bvh->frames.rows()) : motion.NumFrames(); }
+  double Fps() const { return bvh ? 1.0 / bvh->frame_time : motion.frames_per_second; }
+  std::vector<std::string> JointNames() const {
+    if (!bvh) return skeleton->BoneNames();
+    std::vector<std::string> names;
+    for (const BvhJoint& j : bvh->joints) {
+      names.push_back(j.end_site ? bvh->joints[j.parent].name + "_end" : j.name);
+    }
+    return names;
+  }
+  // frames x joints x 3, mm.
+  py::array_t<double> JointPositions() const {
+    const int frames = NumFrames();
+    const size_t joints = JointNames().size();
+    py::array_t<double> out({static_cast<py::ssize_t>(frames), static_cast<py::ssize_t>(joints), py::ssize_t{3}});
+    double* data = out.mutable_data();
+    {
+      py::gil_scoped_release release;
+      Eigen::Matrix3Xd at;
+      const std::optional<Kinematics> kinematics = skeleton ? std::optional<Kinematics>(*skeleton) : std::nullopt;
+      for (int f = 0; f < frames; ++f) {
+        if (bvh) {
+          ComputeBvhPose(*bvh, f, &at);
+        } else {
+          kinematics->Compute(motion.Frame(f), &at);
+        }
+        std::copy(at.data(), at.data() + 3 * joints, data + static_cast<size_t>(f) * joints * 3);
+      }
+    }
+    return out;
+  }
+};
+
+PyMotion ReadMotion(const fs::path& path, const std::optional<fs::path>& asf, double amc_fps, double bvh_mm_per_unit) {
+  MotionFileOptions options;
+  options.asf = asf;
+  options.amc_frames_per_second = amc_fps;
+  options.bvh_mm_per_unit = bvh_mm_per_unit;
+  PyMotion m;
+  switch (FormatFromPath(path, "read_motion")) {
+    case MotionFormat::kAsf:
+      m.skeleton = ReadAsf(path);
+      m.motion.values.resize(0, m.skeleton->NumChannels());
+      break;
+    case MotionFormat::kAmc:
+      m.skeleton = ReadAsf(SkeletonForAmc(path, options));
+      m.motion = ReadAmc(path, *m.skeleton);
+      m.motion.frames_per_second = amc_fps;
+      break;
+    case MotionFormat::kBvh: {
+      Bvh bvh = ReadBvh(path, bvh_mm_per_unit);
+      if (asf) {
+        m.skeleton = ReadAsf(*asf);
+        m.motion = BvhToAcclaim(bvh, *m.skeleton, path.string());
+        m.motion.frames_per_second = 1.0 / bvh.frame_time;
+      } else {
+        m.bvh = std::move(bvh);
+      }
+      break;
+    }
+  }
+  return m;
+}
+
+// Model calls over batches of latent points (M x 3), the GIL released.
+struct PyModel {
+  std::shared_ptr<const GaitModel> model;
+
+  py::array_t<double> MeanPose(const Array& latent) const {
+    const Eigen::Map<const RowMatrix> xs = Rows(latent, 3, "latent");
+    const Eigen::MatrixXd x = xs;  // the batch call takes T x 3 column-major
+    RowMatrix poses(x.rows(), model->NumChannels());
+    {
+      py::gil_scoped_release release;
+      Eigen::MatrixXd out(x.rows(), model->NumChannels());
+      ModelWorkspace workspace;
+      model->MeanPoses(x, out, &workspace);
+      poses = out;
+    }
+    return Out(poses, latent.ndim() == 1);
+  }
+  py::object LogDensity(const Array& latent, bool gradient) const {
+    const Eigen::Map<const RowMatrix> xs = Rows(latent, 3, "latent");
+    Eigen::VectorXd values(xs.rows());
+    RowMatrix gradients(xs.rows(), 3);
+    {
+      py::gil_scoped_release release;
+      for (Eigen::Index i = 0; i < xs.rows(); ++i) {
+        Eigen::Vector3d g;
+        values(i) = model->LogDensity(xs.row(i).transpose(), gradient ? &g : nullptr);
+        if (gradient) gradients.row(i) = g.transpose();
+      }
+    }
+    const bool one = latent.ndim() == 1;
+    py::object v = one ? py::object(py::float_(values(0))) : py::object(py::array_t<double>(values.size(), values.data()));
+    if (!gradient) return v;
+    return py::make_tuple(v, Out(gradients, one));
+  }
+  py::array_t<double> NextLatent(const Array& latent) const {
+    const Eigen::Map<const RowMatrix> xs = Rows(latent, 3, "latent");
+    const Eigen::MatrixXd x = xs;
+    RowMatrix next(x.rows(), 3);
+    {
+      py::gil_scoped_release release;
+      Eigen::MatrixXd out(x.rows(), 3);
+      ModelWorkspace workspace;
+      model->NextLatents(x, out, &workspace);
+      next = out;
+    }
+    return Out(next, latent.ndim() == 1);
+  }
+  py::array_t<double> JointPositions(const Array& pose) const {
+    const Eigen::Map<const RowMatrix> poses = Rows(pose, model->NumChannels(), "pose");
+    std::vector<double> joints_mm;
+    Eigen::Index joints = 0;
+    {
+      py::gil_scoped_release release;
+      Eigen::Matrix3Xd at;
+      for (Eigen::Index i = 0; i < poses.rows(); ++i) {
+        model->JointPositions(poses.row(i).transpose(), &at);
+        joints = at.cols();
+        joints_mm.insert(joints_mm.end(), at.data(), at.data() + at.size());
+      }
+    }
+    if (pose.ndim() == 1) return py::array_t<double>({joints, Eigen::Index{3}}, joints_mm.data());
+    return py::array_t<double>({poses.rows(), joints, Eigen::Index{3}}, joints_mm.data());
+  }
+  void RequireManifold() const {
+    if (!model->HasManifold()) {
+      throw InputError(std::string(ModelKindName(model->kind())) + " model: no gait manifold (JGPM family only)");
+    }
+  }
+
+  static py::array_t<double> Out(const RowMatrix& m, bool one) {
+    if (one) return py::array_t<double>(m.cols(), m.data());
+    return py::array_t<double>({m.rows(), m.cols()}, m.data());
+  }
+};
+
+py::array_t<double> Project(const Camera& camera, const Array& points) {
+  const Eigen::Map<const RowMatrix> p = Rows(points, 3, "points");
+  RowMatrix pixels(p.rows(), 2);
+  for (Eigen::Index i = 0; i < p.rows(); ++i) {
+    Eigen::Vector2d q;
+    if (camera.Project(p.row(i).transpose(), &q)) {
+      pixels(i, 0) = q.x();  // not row(i) = q: GCC 12 warns on the vectorised copy
+      pixels(i, 1) = q.y();
+    } else {
+      pixels.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  return PyModel::Out(pixels, points.ndim() == 1);
+}
+
+}  // namespace
+}  // namespace jgpm
+
+PYBIND11_MODULE(jgpm, m) {
+  using namespace jgpm;
+  m.doc() = "jgpm: gait priors (ML-JGPM and the models it is compared with), cameras and motion files; "
+            "arrays are NumPy, lengths millimetres, angles degrees.";
+  m.attr("__version__") = JGPM_VERSION;
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+  py::class_<PyMotion>(m, "Motion", "A motion read from ASF/AMC or BVH.")
+      .def_property_readonly("num_frames", &PyMotion::NumFrames)
+      .def_property_readonly("frames_per_second", &PyMotion::Fps)
+      .def_property_readonly("joint_names", &PyMotion::JointNames,
+                             "Names of joint_positions()' joints: the Acclaim bones' ends (root first), or the BVH "
+                             "joints (End Sites as PARENT_end).")
+      .def_property_readonly(
+          "values",
+          [](py::object owner) {
+            const PyMotion& self = owner.cast<const PyMotion&>();
+            const RowMatrixXd& v = self.bvh ? self.bvh->frames : self.motion.values;
+            py::array_t<double> view({v.rows(), v.cols()}, v.data(), owner);  // no copy; keeps the motion alive
+            view.attr("setflags")(py::arg("write") = false);
+            return view;
+          },
+          "frames x channels, read-only view: rotations in degrees, the root's translation in the file's units.")
+      .def("joint_positions", &PyMotion::JointPositions, "frames x joints x 3, millimetres (world, y up).")
+      .def(
+          "write_bvh",
+          [](const PyMotion& self, const fs::path& path) {
+            WriteBvh(path, self.bvh ? *self.bvh : AcclaimToBvh(*self.skeleton, self.motion));
+          },
+          py::arg("path"), "Writes BVH (centimetres).")
+      .def(
+          "write_amc",
+          [](const PyMotion& self, const fs::path& path) {
+            if (!self.skeleton) {
+              throw InputError(path.string() + ": a BVH motion read without asf= has no Acclaim skeleton to write AMC for");
+            }
+            WriteAmc(path, self.motion, *self.skeleton);
+          },
+          py::arg("path"), "Writes AMC for the motion's Acclaim skeleton.");
+
+  m.def("read_motion", &ReadMotion, py::arg("path"), py::arg("asf") = std::nullopt, py::arg("amc_fps") = 120.0,
+        py::arg("bvh_mm_per_unit") = 10.0,
+        "Reads an ASF (no frames), AMC (its skeleton: asf=, else NN.asf beside it) or BVH file (with asf=, "
+        "converted to that Acclaim skeleton). jgpm.InputError naming the file and line on a malformed one.");
+
+  py::class_<PyModel>(m, "Model", "A trained gait prior (jgpm train's JSON).")
+      .def_property_readonly("kind", [](const PyModel& self) { return std::string(ModelKindName(self.model->kind())); })
+      .def_property_readonly("num_channels", [](const PyModel& self) { return self.model->NumChannels(); })
+      .def_property_readonly("channel_names", [](const PyModel& self) { return self.model->data().set.channel_names; })
+      .def_property_readonly("latent", [](const PyModel& self) { return RowMatrix(self.model->latent()); },
+                             "The training poses' latent points, N x 3.")
+      .def_property_readonly("has_dynamics", [](const PyModel& self) { return self.model->HasDynamics(); })
+      .def_property_readonly("has_manifold", [](const PyModel& self) { return self.model->HasManifold(); })
+      .def("mean_pose", &PyModel::MeanPose, py::arg("latent"),
+           "Mean poses (degrees, num_channels each) at latent points: (M, 3) -> (M, D), (3,) -> (D,).")
+      .def("log_density", &PyModel::LogDensity, py::arg("latent"), py::arg("gradient") = false,
+           "ln of the latent density up to a constant at latent points ((M, 3) -> (M,)); with gradient=True, also "
+           "its gradient ((M, 3)).")
+      .def("next_latent", &PyModel::NextLatent, py::arg("latent"),
+           "The mean next latent point along the dynamics (GPDM family; others: the point itself).")
+      .def("joint_positions", &PyModel::JointPositions, py::arg("pose"),
+           "Joint positions (mm) of poses on the model's skeleton: (M, D) -> (M, joints, 3), (D,) -> (joints, 3).")
+      .def(
+          "manifold_to_latent",
+          [](const PyModel& self, double phase, double gait, double scale) {
+            self.RequireManifold();
+            return Eigen::Vector3d(self.model->ManifoldToLatent({phase, gait, scale}));
+          },
+          py::arg("phase"), py::arg("gait"), py::arg("scale"),
+          "JGPM family: the latent point of a manifold point (phase in [0, 1), gait, stride scale).")
+      .def(
+          "latent_to_manifold",
+          [](const PyModel& self, const Array& latent) {
+            self.RequireManifold();
+            const Eigen::Map<const RowMatrix> x = Rows(latent, 3, "latent");
+            if (x.rows() != 1) throw py::type_error("latent: expected one point, shape (3,)");
+            const ManifoldPoint p = self.model->LatentToManifold(x.row(0).transpose());
+            return py::make_tuple(p.phase, p.gait, p.scale);
+          },
+          py::arg("latent"), "JGPM family: (phase, gait, scale) of the manifold point nearest a latent point.");
+
+  m.def(
+      "load_model",
+      [](const fs::path& path) {
+        std::unique_ptr<GaitModel> model;
+        {
+          py::gil_scoped_release release;
+          model = ReadModelFile(path);
+        }
+        return PyModel{std::move(model)};
+      },
+      py::arg("path"), "Reads a model file (jgpm train's JSON); jgpm.InputError naming the file when it is not one.");
+
+  py::class_<Camera>(m, "Camera", "A calibrated camera (OpenCV's pinhole model, world in millimetres).")
+      .def_static(
+          "from_yaml", [](const std::string& path) { return ReadCameraYaml(path).camera; }, py::arg("path"),
+          "Reads a camera YAML (OpenCV's calibration sample's keys plus our extrinsics).")
+      .def_readonly("name", &Camera::name)
+      .def_readonly("width", &Camera::width)
+      .def_readonly("height", &Camera::height)
+      .def_readonly("fx", &Camera::fx)
+      .def_readonly("fy", &Camera::fy)
+      .def_readonly("cx", &Camera::cx)
+      .def_readonly("cy", &Camera::cy)
+      .def_readonly("clock_offset_s", &Camera::clock_offset_s)
+      .def_property_readonly("camera_matrix", &Camera::CameraMatrix)
+      .def_property_readonly("distortion", [](const Camera& c) { return c.distortion; })
+      .def_property_readonly("rotation", [](const Camera& c) { return Eigen::Matrix3d(c.cam_from_world_rotation); },
+                             "cam_from_world rotation (3 x 3).")
+      .def_property_readonly("translation_mm",
+                             [](const Camera& c) { return Eigen::Vector3d(c.cam_from_world_translation_mm); },
+                             "cam_from_world translation, mm.")
+      .def_property_readonly("centre_mm", &Camera::CentreInWorld)
+      .def("project", &Project, py::arg("points"),
+           "Pixels of world points (mm): (M, 3) -> (M, 2), through the lens distortion; NaN for a point not in "
+           "front of the camera.");
+}
