@@ -1,7 +1,7 @@
 """`import jgpm` against independent answers: a PCA model's own basis, finite differences,
 OpenCV's projectPoints, the motion's root translation in its file's units, the jgpm
-command's own reading of the same files; and bad input refused with the file or argument
-named. Run by ctest (tests/CMakeLists.txt) with PYTHONPATH at the built module, JGPM_BINARY
+command's own reading of the same files and its tracking of the same masks; and bad input
+refused with the file or argument named. Run by ctest (tests/CMakeLists.txt) with PYTHONPATH at the built module, JGPM_BINARY
 at the jgpm command and JGPM_DATA (or ../shared/data/cmu) at the CMU trials."""
 import json
 import os
@@ -206,6 +206,51 @@ class ModelTest(Fixture):
         self.assertIn("not_a_model.json", str(caught.exception))
 
 
+class TrackerTest(Fixture):
+    def test_stepping_a_clips_masks_gives_the_commands_poses(self):
+        import cv2
+        clip, out = self.dir / "clip", self.dir / "tracked"
+        run_jgpm("render", "--amc", self.data / "subjects" / "35" / "35_12.amc", "--max-frames", 24,
+                 "--no-contact-sheet", "--out", clip)
+        run_jgpm("track", "--model", self.models["jgpm"], "--clip", clip, "--seed", 2, "--no-overlay", "--out", out)
+        expected = json.loads((out / "poses.json").read_text())["frames"]
+        names = sorted(p.stem for p in clip.glob("cam*.yaml"))
+        cameras = [jgpm.Camera.from_yaml(str(clip / f"{name}.yaml")) for name in names]
+        tracker = jgpm.Tracker(jgpm.load_model(self.models["jgpm"]), cameras, seed=2, threads=1)
+        estimates = []
+        for k in range(len(expected)):
+            masks = [cv2.imread(str(clip / "observed" / name / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for name in names]
+            got = tracker.step(masks)
+            self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
+            estimates += got
+        self.assertEqual(tracker.finish(), [])
+        self.assertEqual(len(estimates), len(expected))
+        tracked = 0
+        for e, f in zip(estimates, expected):
+            self.assertEqual((e["frame"], e["status"]), (f["frame"], f["status"]))
+            if f["joints_mm"] is None:
+                self.assertIsNone(e["joints_mm"])
+                continue
+            tracked += 1
+            # poses.json rounds to 0.01 mm; 1 thread here, all cores there.
+            np.testing.assert_allclose(e["joints_mm"], f["joints_mm"], atol=0.006)
+            self.assertAlmostEqual(e["heading_deg"], f["heading_deg"], places=6)
+        self.assertGreater(tracked, 20)
+        self.assertEqual(len(tracker.joint_names), len(estimates[-1]["joints_mm"]))
+
+    def test_masks_of_the_wrong_size_or_number_are_refused(self):
+        camera = self.dir / "cam.yaml"
+        camera.write_text(CameraTest.yaml())
+        tracker = jgpm.Tracker(jgpm.load_model(self.models["pca"]), [jgpm.Camera.from_yaml(str(camera))])
+        with self.assertRaises(TypeError) as caught:
+            tracker.step([np.zeros((240, 320), np.uint8)])
+        self.assertIn("masks[0]: expected 480 x 640", str(caught.exception))
+        with self.assertRaises(TypeError) as caught:
+            tracker.step([np.zeros((480, 640), bool)] * 2)
+        self.assertIn("one per camera (1), got 2", str(caught.exception))
+        self.assertEqual(tracker.step(None), [])  # a frame not seen: held for the start like any other
+
+
 class ExampleTest(Fixture):
     def test_the_example_sees_a_walk_through_a_camera(self):
         # 4 m in front of the walker's pelvis (the origin), looking at it along -z: image
@@ -213,10 +258,16 @@ class ExampleTest(Fixture):
         camera = self.dir / "front.yaml"
         rotation = np.diag([1.0, -1.0, -1.0])
         camera.write_text(CameraTest.yaml(rotation, -rotation @ np.array([0.0, 0.0, 4000.0])))
-        out = self.dir / "walk.csv"
+        out, clip = self.dir / "walk.csv", self.dir / "example_clip"
+        run_jgpm("render", "--amc", self.data / "subjects" / "35" / "35_12.amc", "--max-frames", 20,
+                 "--no-contact-sheet", "--out", clip)
         printed = subprocess.run([sys.executable, SOURCE / "tracker" / "python" / "example.py", self.models["jgpm"],
-                                  camera, out], capture_output=True, text=True, check=True).stdout
+                                  camera, out, clip], capture_output=True, text=True, check=True).stdout
         self.assertIn("60 frames", printed)
+        tracked = re.search(r"(\d+) of 20 frames tracked, root ([0-9.]+) mm off", printed)
+        self.assertIsNotNone(tracked, printed)
+        self.assertGreater(int(tracked.group(1)), 15)
+        self.assertLess(float(tracked.group(2)), 300)  # a 3-iteration prior, 20 frames
         rows = out.read_text().splitlines()
         self.assertEqual(len(rows), 61)
         # The walker stands in front of the camera: every joint in the image.

@@ -1,10 +1,13 @@
-"""A walk sampled from a gait prior and seen through a camera, with `import jgpm`.
+"""A walk sampled from a gait prior and seen through a camera, and a clip tracked from its
+masks, with `import jgpm`.
 
-    PYTHONPATH=build/python python3 tracker/python/example.py MODEL.json CAMERA.yaml OUT.csv
+    PYTHONPATH=build/python python3 tracker/python/example.py MODEL.json CAMERA.yaml OUT.csv [CLIP]
 
 For a JGPM-family model (jgpm, ml-jgpm-torus, ml-jgpm-cyl) the walk goes round the gait
 manifold (phase 0 -> 1, twice); for the others it follows the training latent points. Each
-row of OUT.csv is a frame's joints in the camera's image (pixels; empty when behind it)."""
+row of OUT.csv is a frame's joints in the camera's image (pixels; empty when behind it).
+With CLIP (a `jgpm render` folder), its observed masks are tracked, as any segmenter's
+would be, and the root's error against the clip's ground truth printed."""
 import csv
 import sys
 
@@ -35,7 +38,29 @@ def main(model_path, camera_path, out_path):
     print(f"{model.kind}: {len(poses)} frames of {joints.shape[1]} joints seen by {camera.name} -> {out_path}")
 
 
+def track(model_path, clip):
+    """The clip's observed masks through the tracker; the root's mean error, mm."""
+    import json
+    from pathlib import Path
+
+    import cv2
+    clip = Path(clip)
+    names = sorted(p.stem for p in clip.glob("cam*.yaml"))
+    tracker = jgpm.Tracker(jgpm.load_model(model_path), [jgpm.Camera.from_yaml(str(clip / f"{n}.yaml")) for n in names])
+    truth = json.loads((clip / "ground_truth.json").read_text())["frames"]
+    estimates = []
+    for k in range(len(truth)):
+        masks = [cv2.imread(str(clip / "observed" / n / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for n in names]
+        estimates += tracker.step(masks)
+    estimates += tracker.finish()
+    errors = [np.linalg.norm(e["root_mm"] - np.array(truth[e["frame"]]["joints_mm"][0]))
+              for e in estimates if e["joints_mm"] is not None]
+    print(f"{clip.name}: {len(errors)} of {len(estimates)} frames tracked, root {np.mean(errors):.1f} mm off")
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         sys.exit(__doc__)
-    main(*sys.argv[1:])
+    main(*sys.argv[1:4])
+    if len(sys.argv) == 5:
+        track(sys.argv[1], sys.argv[4])

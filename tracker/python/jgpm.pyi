@@ -85,3 +85,13 @@ class Camera:
     def centre_mm(self) -> npt.NDArray[np.float64]: ...
     def project(self, points: _Array) -> npt.NDArray[np.float64]:
         """(M, 3) -> (M, 2) pixels; NaN for a point not in front of the camera."""
+
+class Tracker:
+    """The annealed particle filter in a prior's latent space, fed binary masks from any segmenter."""
+    def __init__(self, model: Model, cameras: list[Camera], seed: int = 1, particles: int = 200, layers: int = 4,
+                 threads: int = 0, fps: float = 30.0) -> None: ...
+    def step(self, masks: Optional[list[_Array]]) -> list[dict]:
+        """One frame's masks (one per camera, H x W, nonzero = person) or None; the frames tracked by this call."""
+    def finish(self) -> list[dict]: ...
+    @property
+    def joint_names(self) -> list[str]: ...

@@ -5,7 +5,9 @@
 // expected; long calls release the GIL. Stubs: jgpm.pyi beside the module.
 #include <cmath>
 #include <filesystem>
+#include <thread>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -26,6 +28,8 @@
 #include "prior/model/gait_model.h"
 #include "prior/model/model_file.h"
 #include "prior/model/model_kind.h"
+#include "tracker/filter/tracker.h"
+#include "tracker/run/pose_table_cache.h"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -128,6 +132,7 @@ PyMotion ReadMotion(const fs::path& path, const std::optional<fs::path>& asf, do
 // Model calls over batches of latent points (M x 3), the GIL released.
 struct PyModel {
   std::shared_ptr<const GaitModel> model;
+  fs::path path;  // the file it was read from (its pose table is kept beside it)
 
   py::array_t<double> MeanPose(const Array& latent) const {
     const Eigen::Map<const RowMatrix> xs = Rows(latent, 3, "latent");
@@ -214,6 +219,111 @@ py::array_t<double> Project(const Camera& camera, const Array& points) {
   }
   return PyModel::Out(pixels, points.ndim() == 1);
 }
+
+// The tracker fed one frame of masks at a time (from any segmenter). Its start looks at the
+// first start_frames frames together (the person's place, height and heading), so those
+// are returned together once they are all in; after that each step returns its frame.
+struct PyTracker {
+  std::shared_ptr<const GaitModel> model;
+  std::vector<Camera> cameras;
+  std::unique_ptr<Tracker> tracker;
+  double fps = 30;
+  std::vector<Frame> first;  // held for the start
+  bool started = false;
+  int next = 0;
+
+  PyTracker(const PyModel& m, std::vector<Camera> cams, uint64_t seed, int particles, int layers, int threads,
+            double frames_per_second)
+      : model(m.model), cameras(std::move(cams)), fps(frames_per_second) {
+    if (cameras.empty()) throw InputError("Tracker: give at least one camera");
+    if (!(fps > 0)) throw InputError("Tracker: fps must be positive");
+    TrackerOptions options;
+    options.annealing.seed = seed;
+    options.annealing.particles = particles;
+    options.annealing.layers = layers;
+    options.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+    py::gil_scoped_release release;
+    PoseTableOptions table_options = options.table;
+    table_options.threads = options.threads;
+    const std::shared_ptr<const PoseTable> table =
+        CachedPoseTable(*model, m.path.string(), "", table_options, nullptr);
+    tracker = std::make_unique<Tracker>(*model, cameras, options, table);
+  }
+
+  // One frame: a mask per camera (H x W, any number type or bool; nonzero is the person),
+  // or None when the frame was not seen (predicted).
+  py::list Step(const std::optional<std::vector<py::array>>& masks) {
+    Frame frame;
+    frame.index = next++;
+    frame.time_s = frame.index / fps;
+    if (!masks) {
+      frame.dropped = true;
+    } else {
+      if (masks->size() != cameras.size()) {
+        throw py::type_error("masks: expected one per camera (" + std::to_string(cameras.size()) + "), got " +
+                             std::to_string(masks->size()));
+      }
+      for (size_t c = 0; c < cameras.size(); ++c) {
+        const py::array_t<uint8_t, py::array::c_style | py::array::forcecast> mask((*masks)[c].attr("astype")("bool"));
+        if (mask.ndim() != 2 || mask.shape(0) != cameras[c].height || mask.shape(1) != cameras[c].width) {
+          throw py::type_error("masks[" + std::to_string(c) + "]: expected " + std::to_string(cameras[c].height) + " x " +
+                               std::to_string(cameras[c].width) + " (camera " + cameras[c].name + "'s image)");
+        }
+        cv::Mat m(cameras[c].height, cameras[c].width, CV_8UC1);
+        for (py::ssize_t i = 0; i < mask.size(); ++i) m.data[i] = mask.data()[i] ? 255 : 0;
+        frame.masks.push_back(m);
+      }
+    }
+    py::list out;
+    if (!started) {
+      first.push_back(std::move(frame));
+      if (static_cast<int>(first.size()) < tracker->options().start_frames) return out;
+      return Start();
+    }
+    TrackedFrame f;
+    {
+      py::gil_scoped_release release;
+      f = tracker->Step(frame);
+    }
+    out.append(Estimate(f));
+    return out;
+  }
+  // The frames still held for the start (a sequence shorter than start_frames), tracked.
+  py::list Finish() { return started || first.empty() ? py::list() : Start(); }
+
+  py::list Start() {
+    started = true;
+    std::vector<TrackedFrame> tracked;
+    {
+      py::gil_scoped_release release;
+      tracker->StartFromFrames(first);
+      for (const Frame& f : first) tracked.push_back(tracker->Step(f));
+    }
+    first.clear();
+    py::list out;
+    for (const TrackedFrame& f : tracked) out.append(Estimate(f));
+    return out;
+  }
+  py::dict Estimate(const TrackedFrame& f) const {
+    py::dict d;
+    d["frame"] = f.index;
+    d["time_s"] = f.time_s;
+    d["status"] = std::string(TrackStatusName(f.status));
+    d["ess"] = f.ess;
+    d["seconds"] = f.seconds;
+    if (f.state.size() == 0) {
+      d["joints_mm"] = py::none();
+      return d;
+    }
+    const RowMatrix joints = f.joints_mm.transpose();
+    d["joints_mm"] = py::array_t<double>({joints.rows(), joints.cols()}, joints.data());
+    d["root_mm"] = py::array_t<double>(3, Eigen::Vector3d(f.joints_mm.col(0)).data());
+    d["heading_deg"] = f.heading_rad * 180 / std::numbers::pi;
+    d["size"] = f.size;
+    d["pose_deg"] = py::array_t<double>(f.pose_deg.size(), f.pose_deg.data());
+    return d;
+  }
+};
 
 }  // namespace
 }  // namespace jgpm
@@ -307,7 +417,7 @@ PYBIND11_MODULE(jgpm, m) {
           py::gil_scoped_release release;
           model = ReadModelFile(path);
         }
-        return PyModel{std::move(model)};
+        return PyModel{std::move(model), path};
       },
       py::arg("path"), "Reads a model file (jgpm train's JSON); jgpm.InputError naming the file when it is not one.");
 
@@ -334,4 +444,22 @@ PYBIND11_MODULE(jgpm, m) {
       .def("project", &Project, py::arg("points"),
            "Pixels of world points (mm): (M, 3) -> (M, 2), through the lens distortion; NaN for a point not in "
            "front of the camera.");
+
+  py::class_<PyTracker>(m, "Tracker",
+                        "The annealed particle filter in a prior's latent space, fed one frame of binary masks "
+                        "(one per camera) at a time from any segmenter.")
+      .def(py::init<const PyModel&, std::vector<Camera>, uint64_t, int, int, int, double>(), py::arg("model"),
+           py::arg("cameras"), py::arg("seed") = 1, py::arg("particles") = 200, py::arg("layers") = 4,
+           py::arg("threads") = 0, py::arg("fps") = 30.0,
+           "As `jgpm track` with its defaults (threads 0: all cores; the same seed gives the same poses for any "
+           "thread count). The model's pose table is read from beside its file, or built and kept there.")
+      .def("step", &PyTracker::Step, py::arg("masks"),
+           "One frame: a list of masks, one per camera (height x width, nonzero: the person), or None for a frame "
+           "not seen. Returns the frames tracked by this call, as dicts (frame, time_s, status, joints_mm: joints "
+           "x 3 or None, root_mm, heading_deg, size, pose_deg, ess, seconds): none while the first 15 frames are "
+           "gathered (the start looks at them together), then those 15, then one per call.")
+      .def("finish", &PyTracker::Finish,
+           "The frames still held for the start when the sequence was shorter than it, tracked.")
+      .def_property_readonly("joint_names",
+                             [](const PyTracker& self) { return self.model->skeleton().BoneNames(); });
 }
