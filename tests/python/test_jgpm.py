@@ -31,23 +31,31 @@ def run_jgpm(*arguments):
     return subprocess.run([BINARY, *map(str, arguments)], capture_output=True, text=True, check=True).stdout
 
 
+_SHARED = {}  # one temporary folder and one set of trained models for the whole module
+
+
+def tearDownModule():
+    if "temp" in _SHARED:
+        _SHARED["temp"].cleanup()
+
+
 class Fixture(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.temp = tempfile.TemporaryDirectory()
-        cls.dir = Path(cls.temp.name)
-        cls.data = cmu_root()
-        cls.amc = cls.data / "subjects" / "07" / "07_01.amc"
-        cls.asf = cls.data / "subjects" / "07" / "07.asf"
-        cls.models = {}
-        for kind, extra in (("pca", []), ("gpdm", ["--max-iterations", "3"]), ("jgpm", ["--max-iterations", "3"])):
-            path = cls.dir / f"{kind}.json"
-            run_jgpm("train", "--model", kind, *extra, "--data", cls.data, "--out", path)
-            cls.models[kind] = path
+    """The CMU data, a temporary folder and a PCA, a GPDM and a JGPM model trained by the command
+    (GPs for 3 iterations: seconds, not a good prior)."""
 
     @classmethod
-    def tearDownClass(cls):
-        cls.temp.cleanup()
+    def setUpClass(cls):
+        if "temp" not in _SHARED:
+            _SHARED["temp"] = tempfile.TemporaryDirectory()
+            folder, data = Path(_SHARED["temp"].name), cmu_root()
+            models = {}
+            for kind, extra in (("pca", []), ("gpdm", ["--max-iterations", "3"]), ("jgpm", ["--max-iterations", "3"])):
+                models[kind] = folder / f"{kind}.json"
+                run_jgpm("train", "--model", kind, *extra, "--data", data, "--out", models[kind])
+            _SHARED.update(dir=folder, data=data, models=models)
+        cls.dir, cls.data, cls.models = _SHARED["dir"], _SHARED["data"], _SHARED["models"]
+        cls.amc = cls.data / "subjects" / "07" / "07_01.amc"
+        cls.asf = cls.data / "subjects" / "07" / "07.asf"
 
 
 class ModuleTest(unittest.TestCase):
@@ -204,6 +212,76 @@ class ModelTest(Fixture):
         with self.assertRaises(jgpm.InputError) as caught:
             jgpm.load_model(not_a_model)
         self.assertIn("not_a_model.json", str(caught.exception))
+
+
+class TrainInferTest(Fixture):
+    def test_training_is_the_commands_and_reports_its_progress(self):
+        reports = []
+        model = jgpm.train("gpdm", data=str(self.data), max_iterations=3, progress=reports.append)
+        command = jgpm.load_model(self.models["gpdm"])  # jgpm train --model gpdm --max-iterations 3
+        np.testing.assert_array_equal(model.latent, command.latent)
+        xs = command.latent[::50] + 0.1
+        np.testing.assert_array_equal(model.mean_pose(xs), command.mean_pose(xs))
+        self.assertGreaterEqual(len(reports), 2)
+        self.assertEqual([r["iteration"] for r in reports], sorted(r["iteration"] for r in reports))
+        self.assertLess(reports[-1]["objective"], reports[0]["objective"])
+        saved = self.dir / "saved.json"
+        model.save(saved)
+        np.testing.assert_array_equal(jgpm.load_model(saved).latent, model.latent)
+
+    def test_an_exception_in_progress_stops_training_and_is_raised(self):
+        class Enough(Exception):
+            pass
+
+        def progress(report):
+            if report["iteration"] >= 1:
+                raise Enough("enough")
+
+        with self.assertRaises(Enough):
+            jgpm.train("gpdm", data=str(self.data), max_iterations=50, progress=progress)
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.train("gpcm", data=str(self.data))
+        self.assertIn("expected one of", str(caught.exception))
+
+    def test_inference_fills_in_a_missing_leg(self):
+        model = jgpm.load_model(self.models["gpdm"])
+        saved = json.loads(Path(self.models["gpdm"]).read_text())["model"]
+        poses = np.array(saved["training_poses_deg"])[:30]  # the first training cycle
+        full = jgpm.infer(model, poses)
+        self.assertLess(full["final_objective"], full["initial_objective"])
+        self.assertEqual(full["latent"].shape, (30, 3))
+        self.assertLess(np.abs(full["poses_deg"] - poses).mean(), 3)
+        leg = [i for i, name in enumerate(model.channel_names) if name.split(".")[0] in ("lfemur", "ltibia", "lfoot")]
+        observed = [i not in leg for i in range(model.num_channels)]
+        missing = jgpm.infer(model, np.where(observed, poses, 0.0), observed=observed)
+        # The left leg was never seen; the prior puts it within a few degrees of where it was.
+        self.assertLess(np.abs(missing["poses_deg"][:, leg] - poses[:, leg]).mean(), 6)
+        with self.assertRaises(TypeError):
+            jgpm.infer(model, poses, observed=observed[:5])
+
+
+class TrackVideoTest(Fixture):
+    def test_track_video_is_the_commands_run(self):
+        clip, out = self.dir / "video_clip", self.dir / "video_tracked"
+        run_jgpm("render", "--amc", self.data / "subjects" / "35" / "35_12.amc", "--max-frames", 20,
+                 "--no-contact-sheet", "--out", clip)
+        names = sorted(p.stem for p in clip.glob("cam*.yaml"))[:2]
+        videos = [str(clip / f"{n}.avi") for n in names]
+        yamls = [str(clip / f"{n}.yaml") for n in names]
+        arguments = [a for v, c in zip(videos, yamls) for a in ("--video", v, "--camera", c)]
+        run_jgpm("track", "--model", self.models["jgpm"], *arguments, "--seed", 4, "--no-overlay", "--out", out)
+        expected = json.loads((out / "poses.json").read_text())["frames"]
+        result = jgpm.track_video(self.models["jgpm"], videos, yamls, seed=4, threads=1)
+        self.assertEqual(len(result["frames"]), len(expected))
+        for e, f in zip(result["frames"], expected):
+            self.assertEqual((e["frame"], e["status"]), (f["frame"], f["status"]))
+            if f["joints_mm"] is not None:
+                np.testing.assert_allclose(e["joints_mm"], f["joints_mm"], atol=0.006)
+        self.assertGreater(result["wall_seconds"], result["tracking_seconds"])
+        self.assertEqual(result["written"], [])  # no out=: nothing written
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.track_video(self.models["jgpm"], videos, yamls[:1])
+        self.assertIn("--camera", str(caught.exception))
 
 
 class TrackerTest(Fixture):

@@ -1,7 +1,7 @@
 # Type stubs for the jgpm module (tracker/python/jgpm_module.cc). Arrays are NumPy float64;
 # lengths millimetres, angles degrees.
 from os import PathLike
-from typing import Optional, Tuple, Union, overload
+from typing import Callable, Optional, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -57,9 +57,16 @@ class Model:
     def joint_positions(self, pose: _Array) -> npt.NDArray[np.float64]:
         """(M, D) -> (M, joints, 3); (D,) -> (joints, 3)."""
     def manifold_to_latent(self, phase: float, gait: float, scale: float) -> npt.NDArray[np.float64]: ...
+    def save(self, path: _Path) -> None: ...
     def latent_to_manifold(self, latent: _Array) -> Tuple[float, float, float]: ...
 
 def load_model(path: _Path) -> Model: ...
+def train(kind: str, cycles: Optional[_Path] = None, data: Optional[str] = None, split: str = "train",
+          learning: str = "full", max_iterations: int = 0, seed: int = 1,
+          progress: Optional[Callable[[dict], None]] = None) -> Model: ...
+def infer(model: Model, poses: _Array, observed: Optional[list[bool]] = None, adapt: bool = False) -> dict: ...
+def track_video(model: _Path, videos: list[str], cameras: list[str], out: Optional[str] = None,
+                backgrounds: list[str] = [], seed: int = 1, threads: int = 0) -> dict: ...
 
 class Camera:
     """A calibrated camera (OpenCV's pinhole model, world in millimetres)."""

@@ -3,6 +3,7 @@
 // Python jgpm.InputError (a ValueError) with the same one-line message; arrays of the
 // wrong shape or dtype are refused with a TypeError naming the argument and the shape
 // expected; long calls release the GIL. Stubs: jgpm.pyi beside the module.
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <thread>
@@ -27,9 +28,15 @@
 #include "io/mocap/motion_file.h"
 #include "prior/model/gait_model.h"
 #include "prior/model/model_file.h"
+#include "io/gait/data_root.h"
+#include "io/gait/gait_dataset.h"
+#include "io/gait/split.h"
+#include "prior/model/inference.h"
 #include "prior/model/model_kind.h"
+#include "prior/model/train.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/run/pose_table_cache.h"
+#include "tracker/run/track_job.h"
 
 namespace py = pybind11;
 namespace fs = std::filesystem;
@@ -325,6 +332,97 @@ struct PyTracker {
   }
 };
 
+// `jgpm train` as a call: the gait cycles of a prepared dataset (jgpm data cycles' JSON) or
+// of a split of the data root. `progress` (optional) is called with each progress report
+// as a dict; an exception it raises stops training and is raised here.
+PyModel Train(const std::string& kind, const std::optional<fs::path>& cycles, const std::optional<std::string>& data,
+              const std::string& split, const std::string& learning, int max_iterations, uint64_t seed,
+              const py::object& progress) {
+  TrainingOptions options;
+  if (!ParseModelKind(kind, &options.kind)) throw InputError("train: kind '" + kind + "', expected one of " + ModelKindList());
+  if (!ParseLearning(learning, &options.learning)) {
+    throw InputError("train: learning '" + learning + "', expected full, local or sparse");
+  }
+  options.seed = seed;
+  if (max_iterations > 0) {
+    options.full.max_iterations = max_iterations;
+    options.local.max_steps = max_iterations;
+  }
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> raised;
+  if (!progress.is_none()) {
+    options.budget.interrupted = &stop;
+    options.progress = [&](const TrainingProgress& p) {
+      py::gil_scoped_acquire acquire;
+      if (raised) return;
+      try {
+        progress(py::dict(py::arg("stage") = p.stage, py::arg("iteration") = p.iteration,
+                          py::arg("objective") = p.objective, py::arg("jitter") = p.jitter,
+                          py::arg("elapsed_seconds") = p.elapsed_seconds, py::arg("rate") = p.rate));
+      } catch (py::error_already_set& e) {
+        raised = std::move(e);
+        stop = true;
+      }
+    };
+  }
+  std::unique_ptr<GaitModel> model;
+  {
+    py::gil_scoped_release release;
+    GaitDataset dataset;
+    fs::path root;
+    if (cycles) {
+      dataset = ReadGaitDataset(*cycles);
+      root = data ? ResolveDataRoot(data) : fs::path(dataset.data_root);
+    } else {
+      root = ResolveDataRoot(data);
+      dataset = PrepareGaitDataset(root, split, ReadSplit(ResolveSplitPath(split, JGPM_SPLITS_DIR)), GaitCycleOptions{});
+    }
+    model = TrainGaitModel(dataset, ChooseReferenceSkeleton(dataset, root), options);
+  }
+  if (raised) throw std::move(*raised);
+  return PyModel{std::move(model), {}};
+}
+
+// `jgpm track --video ...` as a call: the command's whole job (background learnt unless
+// given, working resolution, overlays when `out` is given).
+py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& videos, const std::vector<std::string>& cameras,
+                    const std::optional<std::string>& out, const std::vector<std::string>& backgrounds, uint64_t seed,
+                    int threads) {
+  TrackJobOptions o;
+  o.model = model.string();
+  o.source.videos = videos;
+  o.source.camera_yamls = cameras;
+  o.source.backgrounds = backgrounds;
+  if (out) o.out = *out;
+  o.tracker.annealing.seed = seed;
+  o.tracker.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  TrackJobResult result;
+  {
+    py::gil_scoped_release release;
+    result = RunTrackJob(o);
+  }
+  py::list frames;
+  for (const TrackedFrame& f : result.run.frames) {
+    py::dict d;
+    d["frame"] = f.index;
+    d["status"] = std::string(TrackStatusName(f.status));
+    if (f.state.size() == 0) {
+      d["joints_mm"] = py::none();
+    } else {
+      const RowMatrix joints = f.joints_mm.transpose();
+      d["joints_mm"] = py::array_t<double>({joints.rows(), joints.cols()}, joints.data());
+      d["root_mm"] = py::array_t<double>(3, Eigen::Vector3d(f.joints_mm.col(0)).data());
+      d["heading_deg"] = f.heading_rad * 180 / std::numbers::pi;
+    }
+    d["ess"] = f.ess;
+    frames.append(d);
+  }
+  py::list written;
+  for (const fs::path& p : result.written) written.append(p.string());
+  return py::dict(py::arg("frames") = frames, py::arg("tracking_seconds") = result.run.tracking_seconds,
+                  py::arg("wall_seconds") = result.wall_seconds, py::arg("written") = written);
+}
+
 }  // namespace
 }  // namespace jgpm
 
@@ -379,6 +477,9 @@ PYBIND11_MODULE(jgpm, m) {
       .def_property_readonly("channel_names", [](const PyModel& self) { return self.model->data().set.channel_names; })
       .def_property_readonly("latent", [](const PyModel& self) { return RowMatrix(self.model->latent()); },
                              "The training poses' latent points, N x 3.")
+      .def(
+          "save", [](const PyModel& self, const fs::path& path) { WriteModelFile(path, *self.model); }, py::arg("path"),
+          "Writes the model file (as jgpm train does).")
       .def_property_readonly("has_dynamics", [](const PyModel& self) { return self.model->HasDynamics(); })
       .def_property_readonly("has_manifold", [](const PyModel& self) { return self.model->HasManifold(); })
       .def("mean_pose", &PyModel::MeanPose, py::arg("latent"),
@@ -409,6 +510,49 @@ PYBIND11_MODULE(jgpm, m) {
           },
           py::arg("latent"), "JGPM family: (phase, gait, scale) of the manifold point nearest a latent point.");
 
+  m.def("train", &Train, py::arg("kind"), py::arg("cycles") = std::nullopt, py::arg("data") = std::nullopt,
+        py::arg("split") = "train", py::arg("learning") = "full", py::arg("max_iterations") = 0, py::arg("seed") = 1,
+        py::arg("progress") = py::none(),
+        "Trains a prior as `jgpm train` does: kind (pca, gplvm, gpdm, bgpdm, llgpdm, jgpm, mljgpm-torus, "
+        "mljgpm-cyl) on the gait cycles of cycles= (jgpm data cycles' JSON) or of split= of the data root (data=, "
+        "else $JGPM_DATA or ../shared/data/cmu); progress(dict) is called as it goes (stage, iteration, objective, "
+        "jitter, elapsed_seconds, rate) and may raise to stop it.");
+  m.def(
+      "infer",
+      [](const PyModel& self, const Array& poses, std::optional<std::vector<bool>> observed, bool adapt) {
+        PoseObservations o;
+        o.poses_deg = Rows(poses, self.model->NumChannels(), "poses");
+        if (observed) {
+          if (observed->size() != static_cast<size_t>(self.model->NumChannels())) {
+            throw py::type_error("observed: expected " + std::to_string(self.model->NumChannels()) + " flags, got " +
+                                 std::to_string(observed->size()));
+          }
+          o.observed = *observed;
+        }
+        InferenceOptions options;
+        options.adapt_posture = adapt;
+        InferenceResult r;
+        {
+          py::gil_scoped_release release;
+          r = InferLatentSequence(*self.model, o, options);
+        }
+        return py::dict(py::arg("latent") = RowMatrix(r.latent), py::arg("poses_deg") = RowMatrix(r.poses_deg),
+                        py::arg("initial_latent") = RowMatrix(r.initial_latent),
+                        py::arg("posture_deg") = r.posture_deg, py::arg("gain") = r.gain,
+                        py::arg("initial_objective") = r.initial_objective,
+                        py::arg("final_objective") = r.final_objective, py::arg("iterations") = r.iterations,
+                        py::arg("message") = r.message);
+      },
+      py::arg("model"), py::arg("poses"), py::arg("observed") = std::nullopt, py::arg("adapt") = false,
+      "The latent sequence of observed poses (T x D degrees; observed: D flags, False for a missing channel), as "
+      "`jgpm eval` infers it: a dict of latent (T x 3), poses_deg (the reconstruction, missing channels filled), "
+      "posture_deg and gain (adapt=True: the person's style), objectives and iterations.");
+  m.def("track_video", &TrackVideo, py::arg("model"), py::arg("videos"), py::arg("cameras"),
+        py::arg("out") = std::nullopt, py::arg("backgrounds") = std::vector<std::string>(), py::arg("seed") = 1,
+        py::arg("threads") = 0,
+        "`jgpm track --video ... --camera ...` as a call (one video and one camera YAML per camera; background "
+        "learnt unless backgrounds= are given; outputs written to out= when given): a dict of frames (frame, "
+        "status, joints_mm, root_mm, heading_deg, ess), tracking_seconds, wall_seconds and written files.");
   m.def(
       "load_model",
       [](const fs::path& path) {
