@@ -36,8 +36,9 @@ set(allowed_tracker/filter ${below_tracker} tracker/body tracker/clip tracker/fr
 set(allowed_tracker/run ${below_tracker} ${tracker_lib})
 # The `jgpm` command (main.cc sees every layer's command group).
 set(allowed_tracker/cli ${below_tracker} ${tracker_lib} io/cli calibration/cli prior/cli)
-# The Python module (`import jgpm`) binds every layer's library.
-set(allowed_tracker/python ${below_tracker} ${tracker_lib})
+# The Python module (`import jgpm`) binds every layer's library, and the walkers' reader
+# and calibration of `calibrate --walkers`.
+set(allowed_tracker/python ${below_tracker} ${tracker_lib} io/cli calibration/cli tracker/cli)
 
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "give -DSOURCE_DIR=<the repository>")

@@ -260,6 +260,44 @@ class TrainInferTest(Fixture):
             jgpm.infer(model, poses, observed=observed[:5])
 
 
+class CalibrateTest(Fixture):
+    def test_calibration_from_walkers_is_the_commands(self):
+        # Eight walks seen by one surveillance camera (4.5 m up, 32 degrees down), each walk
+        # elsewhere on the floor: the rig turned about the vertical and moved along its view.
+        tilt, yaw = np.radians(32), None
+        z = np.array([0.0, -np.sin(tilt), np.cos(tilt)])
+        x = np.cross(z, [0.0, 1.0, 0.0])
+        x /= np.linalg.norm(x)
+        base = np.array([x, np.cross(z, x), z])  # rows: the camera's axes in the world
+        clips = []
+        trials = ["07/07_02", "07/07_03", "35/35_12", "35/35_16", "39/39_12", "02/02_01", "39/39_13", "07/07_04"]
+        for k, trial in enumerate(trials):
+            yaw = np.radians((k * 67) % 360)
+            turn = np.array([[np.cos(yaw), 0, np.sin(yaw)], [0, 1, 0], [-np.sin(yaw), 0, np.cos(yaw)]])
+            centre = turn @ np.array([0.0, 4500.0, -(9500.0 + (k % 4) * 2500.0 - 4000.0)])
+            rotation = base @ turn.T
+            camera = self.dir / f"walk{k}.yaml"
+            camera.write_text(CameraTest.yaml(rotation, -rotation @ centre))
+            clip = self.dir / f"walk{k}"
+            run_jgpm("render", "--amc", self.data / "subjects" / f"{trial}.amc", "--camera", camera,
+                     "--max-frames", 90, "--no-contact-sheet", "--out", clip)
+            clips.append(str(clip))
+        arguments = [a for clip in clips for a in ("--walkers", clip)]
+        out = self.dir / "walkers.yaml"
+        command = subprocess.run([BINARY, "calibrate", *arguments, "--out", str(out)], capture_output=True, text=True)
+        if command.returncode != 0:  # refused: the same refusal
+            with self.assertRaises(jgpm.InputError) as caught:
+                jgpm.calibrate_from_walkers([[clip] for clip in clips])
+            self.assertIn(str(caught.exception), command.stderr)
+            return
+        found = jgpm.calibrate_from_walkers([[clip] for clip in clips])
+        self.assertEqual(len(found), 1)
+        expected = jgpm.Camera.from_yaml(str(out))
+        self.assertAlmostEqual(found[0].fx, expected.fx, places=9)
+        np.testing.assert_allclose(found[0].rotation, expected.rotation, atol=1e-12)
+        np.testing.assert_allclose(found[0].translation_mm, expected.translation_mm, atol=1e-9)
+
+
 class TrackVideoTest(Fixture):
     def test_track_video_is_the_commands_run(self):
         clip, out = self.dir / "video_clip", self.dir / "video_tracked"

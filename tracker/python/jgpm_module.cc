@@ -19,6 +19,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "calibration/camera.h"
+#include "calibration/cli/calibration_commands.h"
 #include "io/base/error.h"
 #include "io/mocap/amc.h"
 #include "io/mocap/asf.h"
@@ -36,6 +37,7 @@
 #include "prior/model/train.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/run/pose_table_cache.h"
+#include "tracker/cli/walker_video.h"
 #include "tracker/run/track_job.h"
 
 namespace py = pybind11;
@@ -547,6 +549,27 @@ PYBIND11_MODULE(jgpm, m) {
       "The latent sequence of observed poses (T x D degrees; observed: D flags, False for a missing channel), as "
       "`jgpm eval` infers it: a dict of latent (T x 3), poses_deg (the reconstruction, missing channels filled), "
       "posture_deg and gain (adapt=True: the person's style), objectives and iterations.");
+  m.def(
+      "calibrate_from_walkers",
+      [](const std::vector<std::vector<std::string>>& takes, double person_height_m,
+         const std::vector<std::string>& backgrounds, const std::vector<std::string>& intrinsics,
+         double max_clock_offset_s) {
+        cli::WalkerRequest request;
+        request.takes = takes;
+        request.person_height_m = person_height_m;
+        request.backgrounds = backgrounds;
+        request.intrinsics = intrinsics;
+        request.max_clock_offset_s = max_clock_offset_s;
+        if (takes.empty() || takes.front().empty()) throw InputError("calibrate_from_walkers: give at least one video");
+        py::gil_scoped_release release;
+        return cli::CalibrateFromWalkerVideos(request, cli::ReadWalkersFromVideo);
+      },
+      py::arg("takes"), py::arg("person_height_m") = 1.70, py::arg("backgrounds") = std::vector<std::string>(),
+      py::arg("intrinsics") = std::vector<std::string>(), py::arg("max_clock_offset_s") = 2.0,
+      "`jgpm calibrate --walkers` as a call: takes is a list of takes, each a list of one video (or frames folder, "
+      "or clip folder) per camera; returns the cameras (one: above the world origin looking along +z; several: "
+      "placed in cam0's world from the walkers they share, with their clock offsets). Prints what it found; "
+      "jgpm.InputError with the command's one-line refusal when the walkers do not determine a camera.");
   m.def("track_video", &TrackVideo, py::arg("model"), py::arg("videos"), py::arg("cameras"),
         py::arg("out") = std::nullopt, py::arg("backgrounds") = std::vector<std::string>(), py::arg("seed") = 1,
         py::arg("threads") = 0,
