@@ -229,6 +229,27 @@ py::array_t<double> Project(const Camera& camera, const Array& points) {
   return PyModel::Out(pixels, points.ndim() == 1);
 }
 
+// A tracked frame as Python sees it (poses.json's fields).
+py::dict EstimateDict(const TrackedFrame& f) {
+  py::dict d;
+  d["frame"] = f.index;
+  d["time_s"] = f.time_s;
+  d["status"] = std::string(TrackStatusName(f.status));
+  d["ess"] = f.ess;
+  d["seconds"] = f.seconds;
+  if (f.state.size() == 0) {
+    d["joints_mm"] = py::none();
+    return d;
+  }
+  const RowMatrix joints = f.joints_mm.transpose();
+  d["joints_mm"] = py::array_t<double>({joints.rows(), joints.cols()}, joints.data());
+  d["root_mm"] = py::array_t<double>(3, Eigen::Vector3d(f.joints_mm.col(0)).data());
+  d["heading_deg"] = f.heading_rad * 180 / std::numbers::pi;
+  d["size"] = f.size;
+  d["pose_deg"] = py::array_t<double>(f.pose_deg.size(), f.pose_deg.data());
+  return d;
+}
+
 // The tracker fed one frame of masks at a time (from any segmenter). Its start looks at the
 // first start_frames frames together (the person's place, height and heading), so those
 // are returned together once they are all in; after that each step returns its frame.
@@ -294,7 +315,7 @@ struct PyTracker {
       py::gil_scoped_release release;
       f = tracker->Step(frame);
     }
-    out.append(Estimate(f));
+    out.append(EstimateDict(f));
     return out;
   }
   // The frames still held for the start (a sequence shorter than start_frames), tracked.
@@ -310,27 +331,8 @@ struct PyTracker {
     }
     first.clear();
     py::list out;
-    for (const TrackedFrame& f : tracked) out.append(Estimate(f));
+    for (const TrackedFrame& f : tracked) out.append(EstimateDict(f));
     return out;
-  }
-  py::dict Estimate(const TrackedFrame& f) const {
-    py::dict d;
-    d["frame"] = f.index;
-    d["time_s"] = f.time_s;
-    d["status"] = std::string(TrackStatusName(f.status));
-    d["ess"] = f.ess;
-    d["seconds"] = f.seconds;
-    if (f.state.size() == 0) {
-      d["joints_mm"] = py::none();
-      return d;
-    }
-    const RowMatrix joints = f.joints_mm.transpose();
-    d["joints_mm"] = py::array_t<double>({joints.rows(), joints.cols()}, joints.data());
-    d["root_mm"] = py::array_t<double>(3, Eigen::Vector3d(f.joints_mm.col(0)).data());
-    d["heading_deg"] = f.heading_rad * 180 / std::numbers::pi;
-    d["size"] = f.size;
-    d["pose_deg"] = py::array_t<double>(f.pose_deg.size(), f.pose_deg.data());
-    return d;
   }
 };
 
@@ -404,21 +406,7 @@ py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& video
     result = RunTrackJob(o);
   }
   py::list frames;
-  for (const TrackedFrame& f : result.run.frames) {
-    py::dict d;
-    d["frame"] = f.index;
-    d["status"] = std::string(TrackStatusName(f.status));
-    if (f.state.size() == 0) {
-      d["joints_mm"] = py::none();
-    } else {
-      const RowMatrix joints = f.joints_mm.transpose();
-      d["joints_mm"] = py::array_t<double>({joints.rows(), joints.cols()}, joints.data());
-      d["root_mm"] = py::array_t<double>(3, Eigen::Vector3d(f.joints_mm.col(0)).data());
-      d["heading_deg"] = f.heading_rad * 180 / std::numbers::pi;
-    }
-    d["ess"] = f.ess;
-    frames.append(d);
-  }
+  for (const TrackedFrame& f : result.run.frames) frames.append(EstimateDict(f));
   py::list written;
   for (const fs::path& p : result.written) written.append(p.string());
   return py::dict(py::arg("frames") = frames, py::arg("tracking_seconds") = result.run.tracking_seconds,
@@ -574,8 +562,8 @@ PYBIND11_MODULE(jgpm, m) {
         py::arg("out") = std::nullopt, py::arg("backgrounds") = std::vector<std::string>(), py::arg("seed") = 1,
         py::arg("threads") = 0,
         "`jgpm track --video ... --camera ...` as a call (one video and one camera YAML per camera; background "
-        "learnt unless backgrounds= are given; outputs written to out= when given): a dict of frames (frame, "
-        "status, joints_mm, root_mm, heading_deg, ess), tracking_seconds, wall_seconds and written files.");
+        "learnt unless backgrounds= are given; outputs written to out= when given): a dict of frames (as "
+        "Tracker.step gives them), tracking_seconds, wall_seconds and written files.");
   m.def(
       "load_model",
       [](const fs::path& path) {
