@@ -91,6 +91,23 @@ void BM_MeanPoseAndKinematics(benchmark::State& state) {
 }
 BENCHMARK(BM_MeanPoseAndKinematics)->Unit(benchmark::kMicrosecond);
 
+// Mean poses of a batch of 1000 latent points (the batch call `import jgpm`'s
+// Model.mean_pose makes): the per-point figure the Python binding's overhead is measured
+// against (README, Python).
+void BM_MeanPosesBatch1000(benchmark::State& state) {
+  const GaitModel& model = Model();
+  const auto queries = Queries(model);
+  Eigen::MatrixXd xs(1000, 3), poses(1000, model.NumChannels());
+  for (int i = 0; i < 1000; ++i) xs.row(i) = queries[i % queries.size()].transpose();
+  ModelWorkspace workspace;
+  for (auto _ : state) {
+    model.MeanPoses(xs, poses, &workspace);
+    benchmark::DoNotOptimize(poses.data());
+  }
+  state.SetLabel("ms per batch = us per point");
+}
+BENCHMARK(BM_MeanPosesBatch1000)->Unit(benchmark::kMillisecond);
+
 void BM_MeanPoseVarianceAndKinematics(benchmark::State& state) {
   const GaitModel& model = Model();
   const auto queries = Queries(model);
