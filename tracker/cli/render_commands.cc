@@ -1,5 +1,6 @@
 #include "tracker/cli/render_commands.h"
 
+#include <cmath>
 #include <cstdio>
 #include <numbers>
 
@@ -15,8 +16,9 @@ namespace jgpm::cli {
 namespace {
 
 struct RenderArguments {
-  std::string asf;
-  std::string amc;
+  std::vector<std::string> asf;
+  std::vector<std::string> amc;
+  std::vector<std::string> walks;
   std::string rig = "ring";
   bool cameras_given = false;  // --cameras (else the webcam rig has its one)
   std::string clothing = "none";
@@ -26,10 +28,44 @@ struct RenderArguments {
   ClipOptions clip;
 };
 
+// "--walk X,Z,HEADING,DELAY": where and when a walker walks (ClipWalker::placement).
+ClipPlacement ParseWalk(const std::string& text) {
+  ClipPlacement p;
+  p.placed = true;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &p.at_x_mm, &p.at_z_mm, &p.heading_deg, &p.delay_s, &end) != 4 ||
+      !std::isfinite(p.at_x_mm) || !std::isfinite(p.at_z_mm) || !std::isfinite(p.heading_deg) ||
+      !std::isfinite(p.delay_s))
+    ThrowInputError("--walk " + text, "expected X_MM,Z_MM,HEADING_DEG,DELAY_S (four numbers, e.g. 0,0,90,0.5)");
+  return p;
+}
+
+std::vector<ClipWalker> ReadWalkers(const RenderArguments& a, const ClipBodyOptions& body) {
+  if (!a.asf.empty() && a.asf.size() != a.amc.size())
+    ThrowInputError("--asf", "give one per --amc (" + std::to_string(a.amc.size()) + ") or none");
+  if (!a.walks.empty() && a.walks.size() != a.amc.size())
+    ThrowInputError("--walk", "give one per --amc (" + std::to_string(a.amc.size()) + ") or none");
+  std::vector<ClipWalker> walkers;
+  for (size_t i = 0; i < a.amc.size(); ++i) {
+    MotionFileOptions files;
+    if (!a.asf.empty()) files.asf = a.asf[i];
+    const std::filesystem::path asf = SkeletonForAmc(a.amc[i], files);
+    ClipWalker w;
+    w.skeleton = ReadAsf(asf);
+    w.motion = ReadAmc(a.amc[i], w.skeleton);
+    w.motion.frames_per_second = a.amc_fps;
+    w.source = {asf.string(), a.amc[i]};
+    // Each walker another person: the i-th (from 0) is --body-seed + i, so that the first
+    // keeps the body a one-walker clip would have.
+    w.body = body;
+    if (i > 0) w.body.body_seed += i;
+    if (!a.walks.empty()) w.placement = ParseWalk(a.walks[i]);
+    walkers.push_back(std::move(w));
+  }
+  return walkers;
+}
+
 void RunRender(const RenderArguments& a) {
-  MotionFileOptions files;
-  if (!a.asf.empty()) files.asf = a.asf;
-  const std::filesystem::path asf = SkeletonForAmc(a.amc, files);
   ClipOptions clip = a.clip;
   JGPM_CHECK(ParseRigKind(a.rig, &clip.rig.kind) && ParseClothing(a.clothing, &clip.body.clothing));  // CLI11 checked
   if (clip.rig.kind == RigKind::kWebcam && !a.cameras_given) clip.rig.num_cameras = 1;
@@ -43,11 +79,9 @@ void RunRender(const RenderArguments& a) {
                             "the camera first (jgpm calibrate --floor-image or --pose)");
     cameras.push_back(file.camera);
   }
-  const Skeleton skeleton = ReadAsf(asf);
-  Motion motion = ReadAmc(a.amc, skeleton);
-  motion.frames_per_second = a.amc_fps;
+  const std::vector<ClipWalker> walkers = ReadWalkers(a, clip.body);
   ProgressLine line("render");
-  const ClipSummary summary = RenderClip(skeleton, motion, {asf.string(), a.amc}, cameras, clip, a.out,
+  const ClipSummary summary = RenderClip(walkers, cameras, clip, a.out,
                                          [&line](int done, int total) { line.Update(done, total, "images"); });
   line.Finish();
   std::printf("rendered %s -> %s\n", summary.BriefReport().c_str(), a.out.c_str());
@@ -64,9 +98,17 @@ void AddRenderCommands(CLI::App& app) {
   auto a = std::make_shared<RenderArguments>();
   CLI::App* render = app.add_subcommand(
       "render", "render a synthetic clip from a mocap trial: video, masks and ground truth per camera");
-  render->add_option("--amc", a->amc, "motion to render")->required()->check(CLI::ExistingFile);
-  render->add_option("--asf", a->asf, "its skeleton (default: NN.asf next to NN_TT.amc)")
+  render->add_option("--amc", a->amc,
+                     "motion to render; repeat for several walkers (at most 8), the clip lasting the first's "
+                     "trial, each next walker another person (--body-seed + 1, + 2, ...)")
+      ->required()->check(CLI::ExistingFile);
+  render->add_option("--asf", a->asf, "its skeleton (default: NN.asf next to NN_TT.amc); one per --amc")
       ->check(CLI::ExistingFile);
+  render->add_option("--walk", a->walks,
+                     "X,Z,HEADING,DELAY, one per --amc: turn and move the trial so that its middle frame's root "
+                     "is at (X, Z) mm on the floor walking towards HEADING degrees (from +x towards +z), and show "
+                     "its middle frame DELAY s after the first walker's (the first's delay: 0). Same X, Z and "
+                     "delay: they cross. Default: each trial as recorded, all from the clip's start");
   CLI::Option* camera = render->add_option("--camera", a->cameras,
       "camera YAML with extrinsics (repeat for several); default: a ring rig, see --cameras");
   render->add_option("--out", a->out, "new (or empty) folder for the clip")->required();

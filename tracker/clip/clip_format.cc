@@ -51,6 +51,144 @@ Camera ReadCamera(const JsonReader& in, const json& c, const std::string& where)
   return camera;
 }
 
+json JointsJson(const Eigen::Matrix3Xd& joints_mm) {
+  json joints = json::array();
+  for (int b = 0; b < joints_mm.cols(); ++b) {  // to 0.01 mm
+    joints.push_back({std::round(joints_mm(0, b) * 100) / 100, std::round(joints_mm(1, b) * 100) / 100,
+                      std::round(joints_mm(2, b) * 100) / 100});
+  }
+  return joints;
+}
+
+Eigen::Matrix3Xd ReadJoints(const JsonReader& in, const json& j, const std::string& where, int count) {
+  const auto positions = in.Get<std::vector<std::vector<double>>>(j, "joints_mm", where);
+  if (static_cast<int>(positions.size()) != count) {
+    in.Fail(where + "joints_mm", "expected " + std::to_string(count) + " joints (joint_names), found " +
+                                     std::to_string(positions.size()));
+  }
+  Eigen::Matrix3Xd joints(3, count);
+  for (int b = 0; b < count; ++b) {
+    if (positions[b].size() != 3) in.Fail(where + "joints_mm", "expected x, y, z for each joint");
+    for (int i = 0; i < 3; ++i) joints(i, b) = positions[b][i];
+  }
+  return joints;
+}
+
+json BodyPartsJson(const std::vector<ClipBodyPart>& body_parts) {
+  json parts = json::array();
+  for (const ClipBodyPart& p : body_parts) {
+    parts.push_back({{"name", p.name}, {"from", p.from}, {"to", p.to}, {"radius_from_mm", p.radius_from_mm},
+                     {"radius_to_mm", p.radius_to_mm}});
+  }
+  return parts;
+}
+
+json BodyJson(const ClipBodyOptions& body, const std::vector<ClipBodyPart>& parts) {
+  json r = {{"width_scale", body.width_scale}, {"parts", BodyPartsJson(parts)}};
+  if (!body.TrackersBody()) {
+    r["body_seed"] = body.body_seed;
+    r["clothing"] = std::string(ClothingName(body.clothing));
+    r["bag"] = body.bag;
+  }
+  return r;
+}
+
+void ReadBody(const JsonReader& in, const json& body, const std::string& where, ClipBodyOptions* options,
+              std::vector<ClipBodyPart>* body_parts) {
+  options->width_scale = in.Get<double>(body, "width_scale", where);
+  if (body.contains("body_seed")) {  // not today's body
+    options->body_seed = in.Get<uint64_t>(body, "body_seed", where);
+    if (!ParseClothing(in.Get<std::string>(body, "clothing", where), &options->clothing)) {
+      in.Fail(where + "clothing", "expected none, trousers, coat or skirt");
+    }
+    options->bag = in.Get<bool>(body, "bag", where);
+  }
+  std::string why;
+  if (!options->Check(&why)) in.Fail(where.substr(0, where.size() - 1), why);
+  const json& parts = in.Field(body, "parts", where);
+  if (!parts.is_array()) in.Fail(where + "parts", "expected an array");
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::string at = where + "parts[" + std::to_string(i) + "].";
+    ClipBodyPart p;
+    p.name = in.Get<std::string>(parts[i], "name", at);
+    p.from = in.Get<std::string>(parts[i], "from", at);
+    p.to = in.Get<std::string>(parts[i], "to", at);
+    p.radius_from_mm = in.Get<double>(parts[i], "radius_from_mm", at);
+    p.radius_to_mm = in.Get<double>(parts[i], "radius_to_mm", at);
+    body_parts->push_back(p);
+  }
+}
+
+json PeopleJson(const std::vector<ClipPerson>& people) {
+  json r = json::array();
+  for (const ClipPerson& p : people) {
+    json frames = json::array();
+    for (const ClipPersonFrame& f : p.frames) {
+      frames.push_back({{"frame", f.frame}, {"source_frame", f.source_frame}, {"joints_mm", JointsJson(f.joints_mm)},
+                        {"visible_px", f.visible_px}});
+    }
+    json placement = {{"placed", p.placement.placed}};
+    if (p.placement.placed) {
+      placement["at_mm"] = {p.placement.at_x_mm, p.placement.at_z_mm};
+      placement["heading_deg"] = p.placement.heading_deg;
+      placement["delay_s"] = p.placement.delay_s;
+    }
+    r.push_back({{"id", p.id}, {"source", {{"asf", p.source_asf}, {"amc", p.source_amc}}},
+                 {"body_model", BodyJson(p.body, p.body_parts)}, {"joint_names", p.joint_names},
+                 {"placement", placement}, {"start_s", p.start_s}, {"frames", frames}});
+  }
+  return r;
+}
+
+std::vector<ClipPerson> ReadPeople(const JsonReader& in, const json& people, int clip_frames, int cameras) {
+  if (!people.is_array() || people.size() < 2) in.Fail("people", "expected an array of 2 or more walkers");
+  std::vector<ClipPerson> r;
+  for (size_t i = 0; i < people.size(); ++i) {
+    const std::string where = "people[" + std::to_string(i) + "].";
+    const json& j = people[i];
+    ClipPerson p;
+    p.id = in.Get<int>(j, "id", where);
+    if (p.id != static_cast<int>(i) + 1) in.Fail(where + "id", "expected " + std::to_string(i + 1));
+    const json& s = in.Field(j, "source", where);
+    p.source_asf = in.Get<std::string>(s, "asf", where + "source.");
+    p.source_amc = in.Get<std::string>(s, "amc", where + "source.");
+    ReadBody(in, in.Field(j, "body_model", where), where + "body_model.", &p.body, &p.body_parts);
+    p.joint_names = in.Get<std::vector<std::string>>(j, "joint_names", where);
+    if (p.joint_names.empty()) in.Fail(where + "joint_names", "is empty");
+    const json& placement = in.Field(j, "placement", where);
+    p.placement.placed = in.Get<bool>(placement, "placed", where + "placement.");
+    if (p.placement.placed) {
+      const auto at = in.Get<std::vector<double>>(placement, "at_mm", where + "placement.");
+      if (at.size() != 2) in.Fail(where + "placement.at_mm", "expected x and z");
+      p.placement.at_x_mm = at[0];
+      p.placement.at_z_mm = at[1];
+      p.placement.heading_deg = in.Get<double>(placement, "heading_deg", where + "placement.");
+      p.placement.delay_s = in.Get<double>(placement, "delay_s", where + "placement.");
+    }
+    p.start_s = in.Get<double>(j, "start_s", where);
+    const json& frames = in.Field(j, "frames", where);
+    if (!frames.is_array()) in.Fail(where + "frames", "expected an array");
+    for (size_t k = 0; k < frames.size(); ++k) {
+      const std::string at = where + "frames[" + std::to_string(k) + "].";
+      ClipPersonFrame f;
+      f.frame = in.Get<int>(frames[k], "frame", at);
+      if (f.frame < 0 || f.frame >= clip_frames || (!p.frames.empty() && f.frame <= p.frames.back().frame)) {
+        in.Fail(at + "frame", "expected a clip frame (0 to " + std::to_string(clip_frames - 1) +
+                                  ") after the one before");
+      }
+      f.source_frame = in.Get<int>(frames[k], "source_frame", at);
+      f.joints_mm = ReadJoints(in, frames[k], at, static_cast<int>(p.joint_names.size()));
+      f.visible_px = in.Get<std::vector<int>>(frames[k], "visible_px", at);
+      if (static_cast<int>(f.visible_px.size()) != cameras) {
+        in.Fail(at + "visible_px", "expected one count per camera (" + std::to_string(cameras) + ")");
+      }
+      p.frames.push_back(std::move(f));
+    }
+    r.push_back(std::move(p));
+  }
+  return r;
+}
+
 }  // namespace
 
 std::string ClipFrameName(int frame) {
@@ -80,17 +218,7 @@ std::string FormatGroundTruth(const ClipGroundTruth& t) {
   truth["degradations"] = {{"sensor_noise", deg.sensor_noise}, {"mask_noise_px", deg.mask_noise_px},
                            {"holes", deg.holes}, {"clutter_blobs", deg.clutter_blobs},
                            {"lighting_gain", deg.lighting_gain}, {"drop_rate", deg.drop_rate}};
-  json parts = json::array();
-  for (const ClipBodyPart& p : t.body_parts) {
-    parts.push_back({{"name", p.name}, {"from", p.from}, {"to", p.to}, {"radius_from_mm", p.radius_from_mm},
-                     {"radius_to_mm", p.radius_to_mm}});
-  }
-  truth["body_model"] = {{"width_scale", t.body.width_scale}, {"parts", parts}};
-  if (!t.body.TrackersBody()) {
-    truth["body_model"]["body_seed"] = t.body.body_seed;
-    truth["body_model"]["clothing"] = std::string(ClothingName(t.body.clothing));
-    truth["body_model"]["bag"] = t.body.bag;
-  }
+  truth["body_model"] = BodyJson(t.body, t.body_parts);
   if (t.rig != RigKind::kRing || t.calibration_error > 0 || t.shadow || !t.occluders.empty()) {
     truth["scene"] = {{"rig", std::string(RigKindName(t.rig))}, {"calibration_error", t.calibration_error},
                       {"shadow", t.shadow}, {"occluders", t.occluders}};
@@ -108,15 +236,12 @@ std::string FormatGroundTruth(const ClipGroundTruth& t) {
   json frames = json::array();
   for (size_t k = 0; k < t.frames.size(); ++k) {
     const ClipFrame& f = t.frames[k];
-    json joints = json::array();
-    for (int b = 0; b < f.joints_mm.cols(); ++b) {  // to 0.01 mm
-      joints.push_back({std::round(f.joints_mm(0, b) * 100) / 100, std::round(f.joints_mm(1, b) * 100) / 100,
-                        std::round(f.joints_mm(2, b) * 100) / 100});
-    }
     frames.push_back({{"frame", k}, {"time_s", f.time_s}, {"source_frame", f.source_frame}, {"dropped", f.dropped},
-                      {"video_frame", f.dropped ? json(nullptr) : json(f.video_frame)}, {"joints_mm", joints}});
+                      {"video_frame", f.dropped ? json(nullptr) : json(f.video_frame)},
+                      {"joints_mm", JointsJson(f.joints_mm)}});
   }
   truth["frames"] = frames;
+  if (!t.people.empty()) truth["people"] = PeopleJson(t.people);
   return FormatJson(truth);
 }
 
@@ -151,16 +276,7 @@ ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& sou
   deg.drop_rate = in.Get<double>(d, "drop_rate", "degradations.");
   std::string why;
   if (!deg.Check(&why)) in.Fail("degradations", why);
-  const json& body = in.Field(root, "body_model", "");
-  t.body.width_scale = in.Get<double>(body, "width_scale", "body_model.");
-  if (body.contains("body_seed")) {  // not today's body
-    t.body.body_seed = in.Get<uint64_t>(body, "body_seed", "body_model.");
-    if (!ParseClothing(in.Get<std::string>(body, "clothing", "body_model."), &t.body.clothing)) {
-      in.Fail("body_model.clothing", "expected none, trousers, coat or skirt");
-    }
-    t.body.bag = in.Get<bool>(body, "bag", "body_model.");
-  }
-  if (!t.body.Check(&why)) in.Fail("body_model", why);
+  ReadBody(in, in.Field(root, "body_model", ""), "body_model.", &t.body, &t.body_parts);
   if (root.contains("scene")) {  // not today's lab
     const json& scene = in.Field(root, "scene", "");
     if (!ParseRigKind(in.Get<std::string>(scene, "rig", "scene."), &t.rig)) {
@@ -170,18 +286,6 @@ ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& sou
     if (!(t.calibration_error >= 0 && t.calibration_error <= 10)) in.Fail("scene.calibration_error", "expected 0 to 10");
     t.shadow = in.Get<bool>(scene, "shadow", "scene.");
     t.occluders = in.Get<std::vector<std::string>>(scene, "occluders", "scene.");
-  }
-  const json& parts = in.Field(body, "parts", "body_model.");
-  if (!parts.is_array()) in.Fail("body_model.parts", "expected an array");
-  for (size_t i = 0; i < parts.size(); ++i) {
-    const std::string where = "body_model.parts[" + std::to_string(i) + "].";
-    ClipBodyPart p;
-    p.name = in.Get<std::string>(parts[i], "name", where);
-    p.from = in.Get<std::string>(parts[i], "from", where);
-    p.to = in.Get<std::string>(parts[i], "to", where);
-    p.radius_from_mm = in.Get<double>(parts[i], "radius_from_mm", where);
-    p.radius_to_mm = in.Get<double>(parts[i], "radius_to_mm", where);
-    t.body_parts.push_back(p);
   }
   t.joint_names = in.Get<std::vector<std::string>>(root, "joint_names", "");
   if (t.joint_names.empty()) in.Fail("joint_names", "is empty");
@@ -221,17 +325,12 @@ ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& sou
       if (f.video_frame != video_frames) in.Fail(where + "video_frame", "expected " + std::to_string(video_frames));
       ++video_frames;
     }
-    const auto positions = in.Get<std::vector<std::vector<double>>>(j, "joints_mm", where);
-    if (static_cast<int>(positions.size()) != joints) {
-      in.Fail(where + "joints_mm", "expected " + std::to_string(joints) + " joints (joint_names), found " +
-                                       std::to_string(positions.size()));
-    }
-    f.joints_mm.resize(3, joints);
-    for (int b = 0; b < joints; ++b) {
-      if (positions[b].size() != 3) in.Fail(where + "joints_mm", "expected x, y, z for each joint");
-      for (int i = 0; i < 3; ++i) f.joints_mm(i, b) = positions[b][i];
-    }
+    f.joints_mm = ReadJoints(in, j, where, joints);
     t.frames.push_back(std::move(f));
+  }
+  if (root.contains("people")) {
+    t.people = ReadPeople(in, in.Field(root, "people", ""), static_cast<int>(t.frames.size()),
+                          static_cast<int>(t.cameras.size()));
   }
   return t;
 }

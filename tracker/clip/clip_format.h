@@ -2,7 +2,11 @@
 // renderer and read by the tracker's tests and benchmarks.
 //
 //   ground_truth.json        frame rate, cameras, per frame the time, source frame and
-//                            3-D joint positions (mm), and which frames were dropped
+//                            3-D joint positions (mm), and which frames were dropped; with
+//                            several walkers, also `people`: each walker's source, body,
+//                            placement and, per frame it is in the scene, its joints and
+//                            how many pixels of it each camera sees (the top-level frames
+//                            are the first walker's, so one-person readers still work)
 //   camK.yaml                each camera (calibration/camera.h YAML), as calibrated: with
 //                            calibration error, not the camera that rendered the images
 //   camK.avi                 colour video (MJPG): shaded body over a textured room, noise
@@ -61,6 +65,33 @@ struct ClipFrame {
   Eigen::Matrix3Xd joints_mm;
 };
 
+// One walker of a several-walker clip, in a clip frame where it is in the scene.
+struct ClipPersonFrame {
+  int frame = 0;         // clip frame
+  int source_frame = 0;  // index into its motion's frames
+  Eigen::Matrix3Xd joints_mm;       // as ClipFrame::joints_mm
+  std::vector<int> visible_px;      // per camera: its pixels no one and nothing hides
+};
+
+// Where and when a walker of a several-walker clip walks (tracker/clip/synthetic_clip.h).
+struct ClipPlacement {
+  bool placed = false;             // false: as recorded, from the clip's start
+  double at_x_mm = 0, at_z_mm = 0;  // its middle frame's root on the floor
+  double heading_deg = 0;          // its walk's direction, degrees from +x towards +z
+  double delay_s = 0;              // its middle frame, after the first walker's
+};
+
+struct ClipPerson {
+  int id = 0;  // 1, 2, ... in the order given
+  std::string source_asf, source_amc;
+  ClipBodyOptions body;
+  std::vector<ClipBodyPart> body_parts;
+  std::vector<std::string> joint_names;
+  ClipPlacement placement;
+  double start_s = 0;                  // clip time of its motion's first frame
+  std::vector<ClipPersonFrame> frames;  // the clip frames it is in the scene, in order
+};
+
 struct ClipGroundTruth {
   static constexpr int kVersion = 1;
   std::string source_asf, source_amc;
@@ -82,6 +113,8 @@ struct ClipGroundTruth {
   std::vector<Camera> render_cameras;  // the cameras that rendered the images, when they
                                        // differ (calibration error); empty otherwise
   std::vector<ClipFrame> frames;
+  std::vector<ClipPerson> people;  // every walker (the first included) when there are
+                                   // several; empty for one
 };
 
 std::string FormatGroundTruth(const ClipGroundTruth& truth);

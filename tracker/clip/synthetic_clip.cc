@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include <opencv2/imgcodecs.hpp>
@@ -49,8 +51,21 @@ std::string ClipSummary::BriefReport() const {
 
 namespace {
 
-// BGR colour of each material.
-cv::Vec3f MaterialColour(ClipMaterial material) {
+// BGR colour of each material; the first walker wears today's, the others other colours
+// so that a viewer tells them apart.
+cv::Vec3f MaterialColour(ClipMaterial material, int walker) {
+  static const cv::Vec3f kTops[] = {{60, 140, 60}, {50, 60, 160}, {150, 150, 150}, {40, 160, 190},
+                                    {130, 60, 120}, {200, 170, 90}, {60, 60, 60}};
+  static const cv::Vec3f kBottoms[] = {{120, 80, 40}, {80, 90, 100}, {40, 40, 90}, {150, 140, 130}};
+  if (walker > 0) {
+    switch (material) {
+      case ClipMaterial::kShirt:
+      case ClipMaterial::kCoat:
+      case ClipMaterial::kSkirt: return kTops[(walker - 1) % std::size(kTops)];
+      case ClipMaterial::kTrousers: return kBottoms[(walker - 1) % std::size(kBottoms)];
+      default: break;
+    }
+  }
   switch (material) {
     case ClipMaterial::kSkin: return {120, 150, 210};
     case ClipMaterial::kShirt: return {170, 90, 50};
@@ -70,8 +85,9 @@ void WriteImage(const fs::path& path, const cv::Mat& image) {
 // The walker's silhouette with the skeleton over it, cropped about him and enlarged to
 // 160 x 240 (at 320 x 240 he is often under 100 px tall). The crop is an affine map of
 // the image, so the camera of the tile is the same camera with scaled intrinsics.
-cv::Mat SheetTile(const Skeleton& skeleton, const Camera& camera, const cv::Mat& mask,
-                  const Eigen::Matrix3Xd& joints) {
+// Each walker in the scene gets its skeleton drawn.
+cv::Mat SheetTile(const std::vector<const Skeleton*>& skeletons, const Camera& camera, const cv::Mat& mask,
+                  const std::vector<Eigen::Matrix3Xd>& joints) {
   constexpr int kWidth = 160, kHeight = 240;
   cv::Rect box = cv::boundingRect(mask);
   if (box.empty()) box = cv::Rect(0, 0, mask.cols, mask.rows);
@@ -92,7 +108,7 @@ cv::Mat SheetTile(const Skeleton& skeleton, const Camera& camera, const cv::Mat&
   zoomed.cy = (camera.cy - y0) * scale;
   zoomed.width = kWidth;
   zoomed.height = kHeight;
-  DrawSkeleton(skeleton, zoomed, joints, &tile);
+  for (size_t w = 0; w < joints.size(); ++w) DrawSkeleton(*skeletons[w], zoomed, joints[w], &tile);
   return tile;
 }
 
@@ -133,74 +149,195 @@ void ComposeFrame(const cv::Mat& background, const BodyImage& body, const std::v
   }
 }
 
-// The ground truth of the clip's frames (joints, times, drops) and what made them.
-ClipGroundTruth GroundTruth(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
-                            const std::vector<Camera>& cameras, const ClipOptions& options, const ClipBody& body,
-                            const std::vector<int>& source_frames, const std::vector<Eigen::Matrix3Xd>& joints,
-                            const std::vector<bool>& dropped) {
+std::vector<ClipBodyPart> BodyParts(const ClipBody& body) {
+  std::vector<ClipBodyPart> parts;
+  for (const ClipShape& s : body.shapes()) {
+    parts.push_back({s.name, body.EndText(s.from, s.from_offset_mm), body.EndText(s.to, s.to_offset_mm),
+                     s.radius_from_mm, s.radius_to_mm});
+  }
+  return parts;
+}
+
+std::vector<std::string> JointNames(const Skeleton& skeleton) {
+  std::vector<std::string> names;
+  for (const Bone& bone : skeleton.bones) names.push_back(bone.name);
+  return names;
+}
+
+// The ground truth of the clip's frames (joints, times, drops) and what made them: the
+// top level is the first walker's; `people` every walker's when there are several.
+ClipGroundTruth GroundTruth(const std::vector<ClipWalker>& walkers, const std::vector<WalkerTrack>& tracks,
+                            const std::vector<ClipBody>& bodies, const std::vector<Camera>& cameras,
+                            const ClipOptions& options, const std::vector<bool>& dropped,
+                            const std::vector<std::vector<std::vector<int>>>& visible_px) {
+  const ClipWalker& first = walkers[0];
   ClipGroundTruth t;
-  t.source_asf = source.asf;
-  t.source_amc = source.amc;
-  t.source_fps = motion.frames_per_second;
+  t.source_asf = first.source.asf;
+  t.source_amc = first.source.amc;
+  t.source_fps = first.motion.frames_per_second;
   t.fps = options.fps;
   t.image_width = cameras[0].width;
   t.image_height = cameras[0].height;
   t.seed = options.seed;
   t.degradations = options.degradations;
-  t.body = options.body;
-  for (const ClipShape& s : body.shapes()) {
-    t.body_parts.push_back({s.name, body.EndText(s.from, s.from_offset_mm), body.EndText(s.to, s.to_offset_mm),
-                            s.radius_from_mm, s.radius_to_mm});
-  }
-  for (const Bone& bone : skeleton.bones) t.joint_names.push_back(bone.name);
+  t.body = first.body;
+  t.body_parts = BodyParts(bodies[0]);
+  t.joint_names = JointNames(first.skeleton);
   t.cameras = cameras;
   int video_frame = 0;
-  for (size_t k = 0; k < joints.size(); ++k) {
+  for (size_t k = 0; k < dropped.size(); ++k) {
     ClipFrame f;
     f.time_s = k / options.fps;
-    f.source_frame = source_frames[k];
+    f.source_frame = tracks[0].source_frames[k];
     f.dropped = dropped[k];
     f.video_frame = dropped[k] ? -1 : video_frame++;
-    f.joints_mm = joints[k];
+    f.joints_mm = tracks[0].joints[k];
     t.frames.push_back(std::move(f));
+  }
+  if (walkers.size() < 2) return t;
+  for (size_t w = 0; w < walkers.size(); ++w) {
+    ClipPerson p;
+    p.id = static_cast<int>(w) + 1;
+    p.source_asf = walkers[w].source.asf;
+    p.source_amc = walkers[w].source.amc;
+    p.body = walkers[w].body;
+    p.body_parts = BodyParts(bodies[w]);
+    p.joint_names = JointNames(walkers[w].skeleton);
+    p.placement = walkers[w].placement;
+    p.start_s = tracks[w].start_s;
+    for (size_t i = 0; i < tracks[w].clip_frames.size(); ++i) {
+      const int k = tracks[w].clip_frames[i];
+      std::vector<int> seen(cameras.size(), 0);
+      for (size_t c = 0; c < cameras.size(); ++c) seen[c] = visible_px[c][k][w];
+      p.frames.push_back({k, tracks[w].source_frames[i], tracks[w].joints[i], seen});
+    }
+    t.people.push_back(std::move(p));
   }
   return t;
 }
 
+// The scene's walks for the rig and the occluders: every walker's poses, with the first
+// walker's last pose last so that the walk's direction (first to last root) stays the
+// first walker's.
+std::vector<Eigen::Matrix3Xd> SceneJoints(const std::vector<WalkerTrack>& tracks) {
+  std::vector<Eigen::Matrix3Xd> joints = tracks[0].joints;
+  const Eigen::Matrix3Xd last = joints.back();
+  for (size_t w = 1; w < tracks.size(); ++w) joints.insert(joints.end(), tracks[w].joints.begin(), tracks[w].joints.end());
+  if (tracks.size() > 1) joints.push_back(last);
+  return joints;
+}
+
+void CheckWalkers(const std::vector<ClipWalker>& walkers, const ClipOptions& options) {
+  if (walkers.empty() || walkers.size() > 8) ThrowInputError("render options", "expected 1 to 8 walkers");
+  for (const ClipWalker& w : walkers) {
+    if (options.fps > w.motion.frames_per_second)
+      ThrowInputError(w.source.amc, "the clip's fps " + FormatShortest(options.fps) + " exceeds the motion's " +
+                                        FormatShortest(w.motion.frames_per_second));
+    if (w.motion.NumFrames() == 0) ThrowInputError(w.source.amc, "the motion has no frames");
+    const ClipPlacement& p = w.placement;
+    if (p.placed && !(std::isfinite(p.at_x_mm) && std::isfinite(p.at_z_mm) && std::isfinite(p.heading_deg) &&
+                      std::isfinite(p.delay_s)))
+      ThrowInputError(w.source.amc, "its placement has a value that is not a finite number");
+  }
+}
+
 }  // namespace
+
+int WalkerTrack::Find(int clip_frame) const {
+  const auto it = std::lower_bound(clip_frames.begin(), clip_frames.end(), clip_frame);
+  return it != clip_frames.end() && *it == clip_frame ? static_cast<int>(it - clip_frames.begin()) : -1;
+}
+
+WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const ClipWalker* first) {
+  const Motion& motion = walker.motion;
+  const ClipPlacement& place = walker.placement;
+  const double source_fps = motion.frames_per_second;
+  const auto middle_s = [](const Motion& m) { return 0.5 * (m.NumFrames() - 1) / m.frames_per_second; };
+  WalkerTrack track;
+  if (first == nullptr && place.placed && place.delay_s != 0)
+    ThrowInputError(walker.source.amc, "the first walker's delay must be 0: the clip starts with its trial");
+  if (first != nullptr && place.placed) track.start_s = middle_s(first->motion) + place.delay_s - middle_s(motion);
+  const Kinematics kinematics(walker.skeleton);
+  // Placed: the rotation about the vertical and the shift that take the middle frame's root
+  // to `at`, heading `heading_deg`.
+  Eigen::Matrix2d turn = Eigen::Matrix2d::Identity();
+  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
+  if (place.placed) {
+    const auto root = [&](int f) {
+      const Eigen::Matrix3Xd j = kinematics.Compute(motion.Frame(f));
+      return Eigen::Vector2d(j(0, 0), j(2, 0));
+    };
+    const Eigen::Vector2d walk = root(motion.NumFrames() - 1) - root(0);
+    const double along = walk.norm() > 300 ? std::atan2(walk.y(), walk.x()) : 0;
+    const double angle = place.heading_deg * std::numbers::pi / 180 - along;
+    turn << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    from = root((motion.NumFrames() - 1) / 2);
+    to = Eigen::Vector2d(place.at_x_mm, place.at_z_mm);
+  }
+  Eigen::Matrix3Xd joints;
+  for (int k = 0; k < frames; ++k) {
+    // Clip frame k shows the source frame nearest to its time.
+    const long source = std::lround(k * (source_fps / fps) - track.start_s * source_fps);
+    if (source < 0 || source >= motion.NumFrames()) continue;
+    kinematics.Compute(motion.Frame(static_cast<int>(source)), &joints);
+    if (place.placed) {
+      for (int b = 0; b < joints.cols(); ++b) {
+        const Eigen::Vector2d p = turn * (Eigen::Vector2d(joints(0, b), joints(2, b)) - from) + to;
+        joints(0, b) = p.x();
+        joints(2, b) = p.y();
+      }
+    }
+    track.clip_frames.push_back(k);
+    track.source_frames.push_back(static_cast<int>(source));
+    track.joints.push_back(joints);
+  }
+  return track;
+}
 
 ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
                        std::vector<Camera> cameras, const ClipOptions& options,
                        const std::string& out_dir, const std::function<void(int, int)>& progress) {
+  return RenderClip({ClipWalker{skeleton, motion, source, options.body, {}}}, std::move(cameras), options, out_dir,
+                    progress);
+}
+
+ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camera> cameras,
+                       const ClipOptions& options, const std::string& out_dir,
+                       const std::function<void(int, int)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   std::string why;
   if (!options.Check(&why)) ThrowInputError("render options", why);
-  if (options.fps > motion.frames_per_second)
-    ThrowInputError("render options", "fps " + FormatShortest(options.fps) + " exceeds the motion's " +
-                                          FormatShortest(motion.frames_per_second));
-  if (motion.NumFrames() == 0) ThrowInputError(source.amc, "the motion has no frames");
+  CheckWalkers(walkers, options);
   CheckCameras(cameras);
+  const size_t people = walkers.size();
+  std::vector<ClipBody> bodies;
+  size_t shapes = 0;
+  for (const ClipWalker& w : walkers) {
+    bodies.emplace_back(w.skeleton, w.body, w.source.asf);
+    shapes += bodies.back().shapes().size();
+  }
+  if (shapes >= BodyImage::kNoPart)
+    ThrowInputError("render options", "the walkers' bodies have " + std::to_string(shapes) +
+                                          " shapes; the ray caster draws at most " +
+                                          std::to_string(BodyImage::kNoPart - 1) + ": fewer walkers");
 
-  // Clip frame k shows the source frame nearest to time k / fps.
+  // The clip is the first walker's trial: clip frame k is at time k / fps.
+  const Motion& motion = walkers[0].motion;
   const double step = motion.frames_per_second / options.fps;
   int frames = static_cast<int>(std::floor((motion.NumFrames() - 1) / step + 1e-9)) + 1;
   if (options.max_frames > 0) frames = std::min(frames, options.max_frames);
-  const Kinematics kinematics(skeleton);
-  std::vector<int> source_frames(frames);
-  std::vector<Eigen::Matrix3Xd> joints(frames);
-  for (int k = 0; k < frames; ++k) {
-    source_frames[k] = std::min(motion.NumFrames() - 1, static_cast<int>(std::lround(k * step)));
-    kinematics.Compute(motion.Frame(source_frames[k]), &joints[k]);
-  }
-  if (cameras.empty()) cameras = MakeRig(joints, options.rig, options.seed);
+  std::vector<WalkerTrack> tracks;
+  for (size_t w = 0; w < people; ++w)
+    tracks.push_back(PlaceWalker(walkers[w], frames, options.fps, w == 0 ? nullptr : &walkers[0]));
+  const std::vector<Eigen::Matrix3Xd> scene_joints = SceneJoints(tracks);
+  if (cameras.empty()) cameras = MakeRig(scene_joints, options.rig, options.seed);
   // The cameras as a calibration would give them: written to the clip, used by the tracker.
   std::vector<Camera> calibrated = cameras;
   if (options.calibration_error > 0) {
     std::mt19937_64 calibration_rng(options.seed * 0xD1B54A32D192ED03ull + 7);
     for (Camera& c : calibrated) c = Miscalibrate(c, options.calibration_error, &calibration_rng);
   }
-  const ClipBody body(skeleton, options.body, source.asf);
-  const ClipScene scene(options.scene, cameras, joints, options.seed);
+  const ClipScene scene(options.scene, cameras, scene_joints, options.seed);
 
   std::mt19937_64 random(options.seed);
   const ClipDegradations& deg = options.degradations;
@@ -214,11 +351,15 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
   const fs::path& partial = folder.partial();
   const ClipPaths files{partial};
 
-  // The room's centre: the walk's middle. It holds every camera, 3 m high unless one is
+  // The room's centre: the walks' middle. It holds every camera, 3 m high unless one is
   // higher.
   Eigen::Vector3d room = Eigen::Vector3d::Zero();
-  for (const Eigen::Matrix3Xd& j : joints) room += j.col(0);
-  room /= frames;
+  int poses = 0;
+  for (const WalkerTrack& track : tracks) {
+    for (const Eigen::Matrix3Xd& j : track.joints) room += j.col(0);
+    poses += static_cast<int>(track.joints.size());
+  }
+  room /= poses;
   room.y() = 0;
   double room_radius = 12000, wall_height = 3000;
   for (const Camera& c : cameras) {
@@ -239,9 +380,14 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     const int n = std::min<int>(8, kept.size());
     for (int i = 0; i < n; ++i) sheet_frames.push_back(kept[(kept.size() - 1) * i / std::max(1, n - 1)]);
   }
-  std::vector<cv::Vec3f> colours;
-  for (const ClipShape& shape : body.shapes()) colours.push_back(MaterialColour(shape.material));
-  std::vector<Capsule> capsules;
+  // visible_px[camera][frame][walker]: its pixels that nothing hides.
+  std::vector<std::vector<std::vector<int>>> visible_px(
+      cameras.size(), std::vector<std::vector<int>>(frames, std::vector<int>(people, 0)));
+  std::vector<Capsule> capsules, placed;
+  std::vector<cv::Vec3f> colours;  // per capsule drawn
+  std::vector<uint8_t> owner;      // per capsule drawn: its walker
+  std::vector<const Skeleton*> sheet_skeletons;
+  std::vector<Eigen::Matrix3Xd> sheet_joints;
   const int total = frames * static_cast<int>(cameras.size());
   int done = 0;
   for (size_t c = 0; c < cameras.size(); ++c) {
@@ -294,14 +440,36 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
         if (progress) progress(++done, total);
         continue;
       }
-      body.Place(joints[k], &capsules);
+      // Everyone in the scene, drawn together so that they hide one another.
+      capsules.clear();
+      colours.clear();
+      owner.clear();
+      sheet_skeletons.clear();
+      sheet_joints.clear();
+      for (size_t w = 0; w < people; ++w) {
+        const int at = tracks[w].Find(k);
+        if (at < 0) continue;
+        bodies[w].Place(tracks[w].joints[at], &placed);
+        capsules.insert(capsules.end(), placed.begin(), placed.end());
+        for (const ClipShape& shape : bodies[w].shapes()) {
+          colours.push_back(MaterialColour(shape.material, static_cast<int>(w)));
+          owner.push_back(static_cast<uint8_t>(w));
+        }
+        sheet_skeletons.push_back(&walkers[w].skeleton);
+        sheet_joints.push_back(tracks[w].joints[at]);
+      }
       caster.Render(capsules, &image);
-      // What can be seen of the walker: not what an occluder or a passer hides.
+      // What can be seen of the walkers: not what an occluder or a passer hides.
       passers.Draw(&passer_mask);
       const cv::Mat hidden = (image.depth_mm > objects_depth) | (passer_mask != 0);
       image.part.setTo(BodyImage::kNoPart, hidden);
       const cv::Mat mask = image.Mask();
-      // Colour: room (with the walker's shadow), clutter, shaded body, passers, then the
+      for (int v = 0; v < image.part.rows; ++v) {
+        const uint8_t* part = image.part.ptr<uint8_t>(v);
+        for (int u = 0; u < image.part.cols; ++u)
+          if (part[u] != BodyImage::kNoPart) ++visible_px[c][k][owner[part[u]]];
+      }
+      // Colour: room (with the walkers' shadows), clutter, shaded bodies, passers, then the
       // light and the sensor's noise.
       clutter.Draw(&clutter_mask);
       scene.RenderShadow(caster, capsules, objects_depth, room, room_radius, &shadow);
@@ -337,7 +505,7 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
       if (options.scene.shadow) observed.setTo(255, shadow);
       WriteImage(files.ObservedMask(camera.name, k), observed);
       if (options.contact_sheet && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
-        sheet_tiles[c].push_back(SheetTile(skeleton, camera, mask, joints[k]));
+        sheet_tiles[c].push_back(SheetTile(sheet_skeletons, camera, mask, sheet_joints));
       }
       if (progress) progress(++done, total);
     }
@@ -354,8 +522,7 @@ ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const Cli
     WriteImage(files.ContactSheet(), TileImages(tiles, labels, static_cast<int>(sheet_frames.size())));
   }
 
-  ClipGroundTruth truth =
-      GroundTruth(skeleton, motion, source, calibrated, options, body, source_frames, joints, dropped);
+  ClipGroundTruth truth = GroundTruth(walkers, tracks, bodies, calibrated, options, dropped, visible_px);
   truth.rig = options.rig.kind;
   truth.calibration_error = options.calibration_error;
   truth.shadow = options.scene.shadow;

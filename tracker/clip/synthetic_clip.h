@@ -3,6 +3,9 @@
 // in tracker/clip/clip_format.h; the cameras in clip_rig.h; the person in clip_body.h; the
 // occluders and the shadow in clip_scene.h; the degradations in clip_degradations.h.
 // Without options a clip is today's: the tracker's own body in the lab's ring.
+// Several walkers (a crowd clip) share the cameras, the scene and the degradations; each has
+// its own motion, body, place on the floor, heading and start time, and the renderer
+// draws them together, so they hide one another as people do.
 #pragma once
 
 #include <cstdint>
@@ -52,6 +55,34 @@ struct ClipSource {
   std::string amc;
 };
 
+// One walker of a clip: a motion, the person who makes it, and where and when.
+struct ClipWalker {
+  Skeleton skeleton;
+  Motion motion;
+  ClipSource source;
+  ClipBodyOptions body;
+  // Unplaced: the trial as recorded, starting with the clip. Placed: turned about the
+  // vertical and moved so that its middle frame's root is at (at_x_mm, at_z_mm) walking
+  // towards heading_deg (its first-to-last root direction; a trial that moves less than
+  // 300 mm is only turned by heading_deg), its middle frame shown delay_s after the first
+  // walker's. The first walker's delay must be 0: the clip is the first walker's trial
+  // (or max_frames of it), and the others enter and leave the scene as their trials begin
+  // and end.
+  ClipPlacement placement;
+};
+
+// The clip frames' poses of one walker: the source frame and joints (placed) of every
+// clip frame it is in the scene.
+struct WalkerTrack {
+  double start_s = 0;                     // clip time of its motion's first frame
+  std::vector<int> clip_frames, source_frames;
+  std::vector<Eigen::Matrix3Xd> joints;
+  int Find(int clip_frame) const;         // index into the above, -1 when not in the scene
+};
+// `frames` clip frames at `fps`; `first` is the first walker's (nullptr for it), whose
+// middle frame the delay counts from. InputError for a placed first walker with a delay.
+WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const ClipWalker* first);
+
 // Renders the clip into `out_dir`, which must not exist or be empty: it is written as
 // `<out_dir>.partial` and renamed when complete, so a failure leaves nothing half-made. An
 // existing `<out_dir>.partial` (another render writing there, or one that was killed) is
@@ -62,6 +93,12 @@ struct ClipSource {
 ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,
                        std::vector<Camera> cameras, const ClipOptions& options,
                        const std::string& out_dir,
+                       const std::function<void(int, int)>& progress = {});
+// Several walkers (1-8; their shapes at most 254 in all, the ray caster's limit); each
+// walker's body is its own (options.body is not used). With one walker, the same clip as
+// above with options.body = walkers[0].body.
+ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camera> cameras,
+                       const ClipOptions& options, const std::string& out_dir,
                        const std::function<void(int, int)>& progress = {});
 
 }  // namespace jgpm

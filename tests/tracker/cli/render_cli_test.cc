@@ -53,28 +53,64 @@ struct PartEnds {
 // depth z or more project within f r / (z - r) pixels of the projected segment, times the
 // secant of the angle off the optical axis (largest at an end), plus a pixel of sampling.
 // (A pinhole bound: the default rig's cameras have no lens distortion.)
-void ExpectMasksMatchTheCameras(const std::filesystem::path& clip, const nlohmann::json& truth) {
-  std::vector<std::string> joint_names = truth["joint_names"];
+// A walker's body: the joints its parts span and the parts.
+struct WalkerParts {
+  std::vector<std::string> joint_names;
   std::set<int> inside;
   std::vector<PartEnds> parts;
-  for (const auto& part : truth["body_model"]["parts"]) {
+};
+
+WalkerParts ReadParts(const nlohmann::json& walker) {
+  WalkerParts w;
+  w.joint_names = walker["joint_names"].get<std::vector<std::string>>();
+  for (const auto& part : walker["body_model"]["parts"]) {
     int ends[2];
     for (int e = 0; e < 2; ++e) {
-      const auto at = std::find(joint_names.begin(), joint_names.end(), part[e ? "to" : "from"].get<std::string>());
-      ASSERT_NE(at, joint_names.end()) << part;
-      ends[e] = static_cast<int>(at - joint_names.begin());
-      inside.insert(ends[e]);
+      const auto at = std::find(w.joint_names.begin(), w.joint_names.end(), part[e ? "to" : "from"].get<std::string>());
+      EXPECT_NE(at, w.joint_names.end()) << part;
+      ends[e] = static_cast<int>(at - w.joint_names.begin());
+      w.inside.insert(ends[e]);
     }
-    parts.push_back({ends[0], ends[1], std::max(part["radius_from_mm"].get<double>(), part["radius_to_mm"].get<double>())});
+    w.parts.push_back({ends[0], ends[1], std::max(part["radius_from_mm"].get<double>(), part["radius_to_mm"].get<double>())});
   }
   for (const char* joint : {"head", "root", "ltibia", "rtibia"}) {  // head, pelvis, ankles
-    const int j = static_cast<int>(std::find(joint_names.begin(), joint_names.end(), joint) - joint_names.begin());
-    EXPECT_TRUE(inside.count(j)) << joint;
+    const int j = static_cast<int>(std::find(w.joint_names.begin(), w.joint_names.end(), joint) - w.joint_names.begin());
+    EXPECT_TRUE(w.inside.count(j)) << joint;
+  }
+  return w;
+}
+
+// The exact masks of a clip against its cameras and ground truth: each camera read back
+// from its camK.yaml, each kept frame's joints (world mm) projected through it. The joints
+// a body part spans are inside the body (the centres of its capsules' end spheres), so
+// they project onto the silhouette (within a pixel: the mask samples pixel centres), and
+// the silhouette's bounding box holds theirs. It reaches no further than the parts do: a
+// part's capsule is within its radius r of the segment between its joints, whose balls at
+// depth z or more project within f r / (z - r) pixels of the projected segment, times the
+// secant of the angle off the optical axis (largest at an end), plus a pixel of sampling.
+// (A pinhole bound: the default rig's cameras have no lens distortion.) With several
+// walkers, each walker in the frame is checked so and the reach is all of theirs.
+void ExpectMasksMatchTheCameras(const std::filesystem::path& clip, const nlohmann::json& truth) {
+  // walkers[i] and, per clip frame, the joints of each walker in it.
+  std::vector<WalkerParts> walkers;
+  std::map<int, std::vector<std::pair<int, nlohmann::json>>> posed;
+  if (truth.contains("people")) {
+    for (const auto& person : truth["people"]) {
+      walkers.push_back(ReadParts(person));
+      for (const auto& f : person["frames"])
+        posed[f["frame"].get<int>()].push_back({static_cast<int>(walkers.size()) - 1, f["joints_mm"]});
+    }
+  } else {
+    walkers.push_back(ReadParts(truth));
+    for (const auto& f : truth["frames"]) posed[f["frame"].get<int>()].push_back({0, f["joints_mm"]});
   }
   int checked = 0;
   for (const auto& c : truth["cameras"]) {
     const Camera camera = ReadCameraYaml((clip / c["yaml"].get<std::string>()).string()).camera;
     ASSERT_TRUE(std::all_of(camera.distortion.begin(), camera.distortion.end(), [](double k) { return k == 0; }));
+    auto secant = [&](const Eigen::Vector2d& p) {
+      return std::hypot(1.0, (p.x() - camera.cx) / camera.fx, (p.y() - camera.cy) / camera.fy);
+    };
     for (const auto& frame : truth["frames"]) {
       char name[32];
       std::snprintf(name, sizeof name, "%06d.png", frame["frame"].get<int>());
@@ -87,26 +123,29 @@ void ExpectMasksMatchTheCameras(const std::filesystem::path& clip, const nlohman
       ASSERT_FALSE(mask.empty()) << path;
       ASSERT_EQ(mask.cols, camera.width);
       ASSERT_EQ(mask.rows, camera.height);
-      std::map<int, Eigen::Vector2d> pixel;
-      std::map<int, double> depth_mm;
-      Eigen::AlignedBox2d joints_box, reach_box, mask_box;
-      for (int j : inside) {
-        const auto& p = frame["joints_mm"][j];
-        const Eigen::Vector3d world(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-        ASSERT_TRUE(camera.Project(world, &pixel[j]));
-        depth_mm[j] = camera.ToCamera(world).z();
-        EXPECT_TRUE(ForegroundNear(mask, pixel[j], 1)) << path << ": " << joint_names[j] << " at " << pixel[j].transpose();
-        joints_box.extend(pixel[j]);
-      }
-      auto secant = [&](const Eigen::Vector2d& p) {
-        return std::hypot(1.0, (p.x() - camera.cx) / camera.fx, (p.y() - camera.cy) / camera.fy);
-      };
-      for (const PartEnds& part : parts) {
-        const double z = std::min(depth_mm[part.from], depth_mm[part.to]);
-        const double reach_px = std::max(camera.fx, camera.fy) * part.radius_mm / (z - part.radius_mm) *
-                                    std::max(secant(pixel[part.from]), secant(pixel[part.to])) + 1;
-        const Eigen::Vector2d pad = Eigen::Vector2d::Constant(reach_px);
-        for (int end : {part.from, part.to}) reach_box.extend(pixel[end] - pad).extend(pixel[end] + pad);
+      Eigen::AlignedBox2d reach_box, mask_box;
+      std::vector<Eigen::AlignedBox2d> joints_boxes;
+      for (const auto& [w, joints] : posed[frame["frame"].get<int>()]) {
+        const WalkerParts& walker = walkers[w];
+        std::map<int, Eigen::Vector2d> pixel;
+        std::map<int, double> depth_mm;
+        Eigen::AlignedBox2d joints_box;
+        for (int j : walker.inside) {
+          const auto& p = joints[j];
+          const Eigen::Vector3d world(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+          ASSERT_TRUE(camera.Project(world, &pixel[j]));
+          depth_mm[j] = camera.ToCamera(world).z();
+          EXPECT_TRUE(ForegroundNear(mask, pixel[j], 1)) << path << ": " << walker.joint_names[j] << " at " << pixel[j].transpose();
+          joints_box.extend(pixel[j]);
+        }
+        joints_boxes.push_back(joints_box);
+        for (const PartEnds& part : walker.parts) {
+          const double z = std::min(depth_mm[part.from], depth_mm[part.to]);
+          const double reach_px = std::max(camera.fx, camera.fy) * part.radius_mm / (z - part.radius_mm) *
+                                      std::max(secant(pixel[part.from]), secant(pixel[part.to])) + 1;
+          const Eigen::Vector2d pad = Eigen::Vector2d::Constant(reach_px);
+          for (int end : {part.from, part.to}) reach_box.extend(pixel[end] - pad).extend(pixel[end] + pad);
+        }
       }
       for (int v = 0; v < mask.rows; ++v) {
         for (int u = 0; u < mask.cols; ++u) {
@@ -114,9 +153,11 @@ void ExpectMasksMatchTheCameras(const std::filesystem::path& clip, const nlohman
         }
       }
       ASSERT_FALSE(mask_box.isEmpty()) << path;
-      EXPECT_TRUE(mask_box.contains(Eigen::AlignedBox2d(joints_box.min().array() + 1, joints_box.max().array() - 1)))
-          << path << ": mask " << mask_box.min().transpose() << " .. " << mask_box.max().transpose() << ", joints "
-          << joints_box.min().transpose() << " .. " << joints_box.max().transpose();
+      for (const Eigen::AlignedBox2d& joints_box : joints_boxes) {
+        EXPECT_TRUE(mask_box.contains(Eigen::AlignedBox2d(joints_box.min().array() + 1, joints_box.max().array() - 1)))
+            << path << ": mask " << mask_box.min().transpose() << " .. " << mask_box.max().transpose() << ", joints "
+            << joints_box.min().transpose() << " .. " << joints_box.max().transpose();
+      }
       EXPECT_TRUE(reach_box.contains(mask_box)) << path << ": mask " << mask_box.min().transpose() << " .. "
                                                 << mask_box.max().transpose() << ", the parts' reach "
                                                 << reach_box.min().transpose() << " .. " << reach_box.max().transpose();
@@ -144,6 +185,24 @@ TEST(RenderCli, RendersAShortClipWithTheDefaultRig) {
   ExpectMasksMatchTheCameras(out, truth);
 }
 
+// Two walkers sent to cross: both in the ground truth, each at its place, and the masks
+// still agree with the cameras (for the first walker, the top level).
+TEST(RenderCli, RendersTwoWalkersCrossing) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "clip";
+  const Result r = Jgpm("render --amc " + Amc() + " --amc " + Amc() + " --walk 0,0,0,0 --walk 1000,0,90,0.2 --out " +
+                        out.string() + " --max-frames 8 --rig surveillance --cameras 1 --body-seed 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json truth = ReadJsonFile(out / "ground_truth.json", "truth");
+  ASSERT_EQ(truth["people"].size(), 2u);
+  EXPECT_EQ(truth["people"][1]["placement"]["heading_deg"], 90.0);
+  EXPECT_EQ(truth["people"][0]["body_model"]["body_seed"], 2);  // --body-seed, then + 1 each
+  EXPECT_EQ(truth["people"][1]["body_model"]["body_seed"], 3);
+  EXPECT_NEAR(truth["people"][1]["start_s"].get<double>(), 0.2, 1e-12);  // the same trial, 0.2 s later
+  EXPECT_EQ(truth["people"][1]["frames"][0]["frame"], 6);                  // 0.2 s at 30 fps
+  ExpectMasksMatchTheCameras(out, truth);
+}
+
 TEST(RenderCli, BadRequestsGiveOneLineAndWriteNothing) {
   test::TempDir dir;
   const std::string out = (dir.path() / "clip").string();
@@ -167,6 +226,10 @@ TEST(RenderCli, BadRequestsGiveOneLineAndWriteNothing) {
       {"--amc " + Amc() + " --out " + (dir.path() / "full").string(), "not empty"},
       {"--amc " + (dir.path() / "none.amc").string() + " --out " + out, "none.amc"},
       {"--amc " + Amc(), "--out"},
+      {"--amc " + Amc() + " --amc " + Amc() + " --out " + out + " --walk 0,0,90,0", "--walk"},
+      {"--amc " + Amc() + " --out " + out + " --walk 0,0,ninety,0", "X_MM,Z_MM,HEADING_DEG,DELAY_S"},
+      {"--amc " + Amc() + " --out " + out + " --walk 0,0,90,nan", "X_MM,Z_MM,HEADING_DEG,DELAY_S"},
+      {"--amc " + Amc() + " --out " + out + " --walk 0,0,90,1", "delay must be 0"},
   };
   for (const Case& c : cases) {
     const Result r = Jgpm("render " + c.arguments);

@@ -4,11 +4,14 @@
 // does what it says and nothing else.
 #include "tracker/clip/synthetic_clip.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <fstream>
 #include <random>
 #include <tuple>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -424,6 +427,115 @@ TEST(SyntheticClipTest, CalibrationErrorWritesOtherCamerasThanTheRenderingOnes) 
     EXPECT_GT((written.CentreInWorld() - truth.render_cameras[c].CentreInWorld()).norm(), 0.1);
     EXPECT_LE((written.CentreInWorld() - truth.render_cameras[c].CentreInWorld()).norm(), 60 + 1e-6);
   }
+}
+
+// Two walkers sent across each other: each is where --walk put it (its middle frame's root
+// at the point given, its walk along the heading given), both are drawn into one mask, and
+// the pixels each one shows add up to the mask (what one hides of the other is counted
+// once, for the nearer).
+TEST(SyntheticClipTest, SeveralWalkersAreDrawnTogetherWhereTheyWereSent) {
+  const Trial& a = Walk();
+  Trial b;
+  b.source = {(test::CmuRoot() / "subjects/07/07.asf").string(), (test::CmuRoot() / "subjects/07/07_01.amc").string()};
+  b.skeleton = ReadAsf(b.source.asf);
+  b.motion = ReadAmc(b.source.amc, b.skeleton);
+  ClipWalker first{a.skeleton, a.motion, a.source, {}, {true, 500, -200, 0, 0}};
+  ClipWalker second{b.skeleton, b.motion, b.source, {}, {true, 500, -200, 90, 0}};
+  second.body.body_seed = 3;
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  const fs::path clip = dir.path() / "clip";
+  RenderClip({first, second}, {}, options, clip.string());
+  const std::string text = ReadTextFile(clip / "ground_truth.json", "truth");
+  const ClipGroundTruth truth = ParseGroundTruth(text, "gt.json");
+  EXPECT_EQ(FormatGroundTruth(truth), text);
+  ASSERT_EQ(truth.people.size(), 2u);
+  ASSERT_EQ(truth.frames.size(), 83u);  // the first walker's trial
+  // 07_01 has 316 frames to 07_02's 329: its middle comes 6.5 source frames sooner, so it
+  // starts 6.5 / 120 s after the clip: it is in clip frames 2 (source frame 1.5) to 80
+  // (313.5; frame 81 would be 317.5, past its last, 315).
+  EXPECT_NEAR(truth.people[1].start_s, 6.5 / 120, 1e-12);
+  EXPECT_EQ(truth.people[0].frames.size(), 83u);
+  ASSERT_EQ(truth.people[1].frames.size(), 79u);
+  EXPECT_EQ(truth.people[1].frames.front().frame, 2);
+  EXPECT_EQ(truth.people[1].frames.back().frame, 80);
+  EXPECT_EQ(truth.people[1].body.body_seed, 3u);
+  const Kinematics kinematics_a(a.skeleton), kinematics_b(b.skeleton);
+  for (size_t w = 0; w < 2; ++w) {
+    const ClipPerson& p = truth.people[w];
+    const Motion& motion = w == 0 ? a.motion : b.motion;
+    const Kinematics& kinematics = w == 0 ? kinematics_a : kinematics_b;
+    ASSERT_FALSE(p.frames.empty());
+    for (const ClipPersonFrame& f : p.frames) {
+      // Shown at its own time: a source frame nearest to (clip time - start) * 120 (07_01's
+      // fall half-way between two).
+      EXPECT_LE(std::abs(f.source_frame - (f.frame / 30.0 - p.start_s) * 120), 0.5 + 1e-9) << w << " " << f.frame;
+      // A rigid motion of the recorded pose: the same bone lengths and heights.
+      const Eigen::Matrix3Xd recorded = kinematics.Compute(motion.Frame(f.source_frame));
+      EXPECT_NEAR((f.joints_mm.row(1) - recorded.row(1)).cwiseAbs().maxCoeff(), 0, 0.006);
+      EXPECT_NEAR((f.joints_mm.col(5) - f.joints_mm.col(0)).norm(), (recorded.col(5) - recorded.col(0)).norm(), 0.02);
+    }
+    // Its middle frame's root at (500, -200), its walk towards its heading.
+    const Eigen::Matrix3Xd middle = kinematics.Compute(motion.Frame((motion.NumFrames() - 1) / 2));
+    const Eigen::Matrix3Xd start = kinematics.Compute(motion.Frame(0)), end = kinematics.Compute(motion.Frame(motion.NumFrames() - 1));
+    Eigen::Vector2d walk(end(0, 0) - start(0, 0), end(2, 0) - start(2, 0));
+    const double along = std::atan2(walk.y(), walk.x()), heading = (w == 0 ? 0 : 90) * std::numbers::pi / 180;
+    const Eigen::Rotation2Dd turn(heading - along);
+    for (const ClipPersonFrame& f : p.frames) {
+      const Eigen::Matrix3Xd recorded = kinematics.Compute(motion.Frame(f.source_frame));
+      const Eigen::Vector2d expected = turn * Eigen::Vector2d(recorded(0, 0) - middle(0, 0), recorded(2, 0) - middle(2, 0)) +
+                                       Eigen::Vector2d(500, -200);
+      EXPECT_NEAR(f.joints_mm(0, 0), expected.x(), 0.006);
+      EXPECT_NEAR(f.joints_mm(2, 0), expected.y(), 0.006);
+    }
+  }
+  // The top level is the first walker's.
+  for (size_t k = 0; k < truth.frames.size(); ++k)
+    EXPECT_EQ(truth.frames[k].joints_mm, truth.people[0].frames[k].joints_mm);
+  // Every pixel of the mask belongs to exactly one walker; at the crossing one hides the
+  // other in some camera.
+  double least_seen = 1;
+  for (size_t c = 0; c < truth.cameras.size(); ++c) {
+    for (int k = 0; k < 83; ++k) {
+      const cv::Mat mask = cv::imread((clip / "masks" / truth.cameras[c].name / ClipFrameName(k)).string(),
+                                      cv::IMREAD_UNCHANGED);
+      const int second_at = k - truth.people[1].frames.front().frame;
+      const int second = second_at >= 0 && second_at < 79 ? truth.people[1].frames[second_at].visible_px[c] : 0;
+      EXPECT_EQ(truth.people[0].frames[k].visible_px[c] + second, cv::countNonZero(mask))
+          << truth.cameras[c].name << " frame " << k;
+    }
+    std::vector<double> counts[2];
+    for (size_t w = 0; w < 2; ++w)
+      for (const ClipPersonFrame& f : truth.people[w].frames) counts[w].push_back(f.visible_px[c]);
+    for (size_t w = 0; w < 2; ++w) {
+      std::vector<double> sorted = counts[w];
+      std::sort(sorted.begin(), sorted.end());
+      least_seen = std::min(least_seen, sorted.front() / sorted[sorted.size() / 2]);
+    }
+  }
+  std::printf("least seen: %.2f of a walker's median pixels\n", least_seen);
+  EXPECT_LT(least_seen, 0.6);
+  // Malformed people are named.
+  const struct {
+    const char* from;
+    const char* to;
+    const char* phrase;
+  } cases[] = {
+      {"\"id\": 2", "\"id\": 3", "people[1].id"},
+      {"\"visible_px\": [", "\"visible_px\": [1, ", "visible_px"},
+      {"\"placed\": true", "\"placed\": 1", "people[0].placement.placed"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.from);
+    test::ExpectInputError([&] { ParseGroundTruth(test::Replace(text, c.from, c.to), "gt.json"); }, {"gt.json", c.phrase});
+  }
+  // The first walker cannot be late: the clip is its trial.
+  first.placement.delay_s = 0.5;
+  test::ExpectInputError([&] { RenderClip({first, second}, {}, options, (dir.path() / "late").string()); },
+                         {"07_02.amc", "delay must be 0"});
+  EXPECT_FALSE(fs::exists(dir.path() / "late"));
+  test::ExpectInputError([&] { RenderClip(std::vector<ClipWalker>(9, second), {}, options, (dir.path() / "nine").string()); },
+                         {"1 to 8 walkers"});
 }
 
 TEST(ClipFormat, GroundTruthRoundTripAndMalformedInput) {
