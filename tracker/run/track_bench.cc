@@ -15,6 +15,7 @@
 #include "prior/model/inference.h"
 #include "prior/model/model_file.h"
 #include "tracker/frames/clip_source.h"
+#include "tracker/run/mot_metrics.h"
 #include "tracker/run/track_job.h"
 
 namespace jgpm {
@@ -92,18 +93,8 @@ void Text(cv::Mat& image, const std::string& text, cv::Point at, double scale = 
 }  // namespace
 
 bool PersonInView(const ClipGroundTruth& truth, int frame) {
-  const std::vector<Camera>& cameras = truth.render_cameras.empty() ? truth.cameras : truth.render_cameras;
-  const Eigen::Matrix3Xd& joints = truth.frames.at(frame).joints_mm;
-  for (const Camera& camera : cameras) {
-    int inside = 0;
-    for (int j = 0; j < joints.cols(); ++j) {
-      Eigen::Vector2d p;
-      inside += camera.Project(joints.col(j), &p) && p.x() >= 0 && p.y() >= 0 && p.x() < camera.width &&
-                p.y() < camera.height;
-    }
-    if (2 * inside >= joints.cols() && joints.cols() > 0) return true;
-  }
-  return false;
+  return JointsHalfInView(truth.render_cameras.empty() ? truth.cameras : truth.render_cameras,
+                          truth.frames.at(frame).joints_mm);
 }
 
 double TriangulatedByWrittenCameras(const ClipGroundTruth& truth, int frames) {
