@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders the tracking benchmark (datasets_scripts/tracking_suite.txt, or the suite file
-# SUITE names, e.g. SUITE=datasets_scripts/realism_suite.txt) into OUT_DIR (default
+# SUITE names, e.g. SUITE=datasets_scripts/realism_suite.txt or crowd_suite.txt) into OUT_DIR (default
 # build/tracking_suite), one folder per clip; clips already there are kept.
 # Data root: $JGPM_DATA, else ./data/cmu, else ../shared/data/cmu. Extra arguments go to
 # every `jgpm render` (e.g. --max-frames 10 for a quick look). ONLY=NAME renders that clip
@@ -26,9 +26,11 @@ while read -r name trial options; do
     echo "== $name: already rendered"
     continue
   fi
-  subject="${trial%%_*}"
   echo "== $name: $trial $options"
+  amcs=()  # one --amc per walker: TRIAL may be several joined by '+'
+  IFS='+' read -ra walkers <<< "$trial"
+  for walker in "${walkers[@]}"; do amcs+=(--amc "$root/subjects/${walker%%_*}/$walker.amc"); done
   # shellcheck disable=SC2086  # the options are words
-  "$jgpm" render --amc "$root/subjects/$subject/$trial.amc" --out "$out/$name" $options "$@"
+  "$jgpm" render "${amcs[@]}" --out "$out/$name" $options "$@"
 done < "${SUITE:-datasets_scripts/tracking_suite.txt}"
 echo "tracking suite in $out"

@@ -1,6 +1,5 @@
 #include "tracker/cli/render_commands.h"
 
-#include <cmath>
 #include <cstdio>
 #include <numbers>
 
@@ -28,18 +27,6 @@ struct RenderArguments {
   ClipOptions clip;
 };
 
-// "--walk X,Z,HEADING,DELAY": where and when a walker walks (ClipWalker::placement).
-ClipPlacement ParseWalk(const std::string& text) {
-  ClipPlacement p;
-  p.placed = true;
-  char end = 0;
-  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &p.at_x_mm, &p.at_z_mm, &p.heading_deg, &p.delay_s, &end) != 4 ||
-      !std::isfinite(p.at_x_mm) || !std::isfinite(p.at_z_mm) || !std::isfinite(p.heading_deg) ||
-      !std::isfinite(p.delay_s))
-    ThrowInputError("--walk " + text, "expected X_MM,Z_MM,HEADING_DEG,DELAY_S (four numbers, e.g. 0,0,90,0.5)");
-  return p;
-}
-
 std::vector<ClipWalker> ReadWalkers(const RenderArguments& a, const ClipBodyOptions& body) {
   if (!a.asf.empty() && a.asf.size() != a.amc.size())
     ThrowInputError("--asf", "give one per --amc (" + std::to_string(a.amc.size()) + ") or none");
@@ -55,11 +42,9 @@ std::vector<ClipWalker> ReadWalkers(const RenderArguments& a, const ClipBodyOpti
     w.motion = ReadAmc(a.amc[i], w.skeleton);
     w.motion.frames_per_second = a.amc_fps;
     w.source = {asf.string(), a.amc[i]};
-    // Each walker another person: the i-th (from 0) is --body-seed + i, so that the first
-    // keeps the body a one-walker clip would have.
-    w.body = body;
-    if (i > 0) w.body.body_seed += i;
-    if (!a.walks.empty()) w.placement = ParseWalk(a.walks[i]);
+    w.body = WalkerBody(body, static_cast<int>(i));
+    if (!a.walks.empty() && !ParsePlacement(a.walks[i], &w.placement))
+      ThrowInputError("--walk " + a.walks[i], "expected X_MM,Z_MM,HEADING_DEG,DELAY_S (four numbers, e.g. 0,0,90,0.5)");
     walkers.push_back(std::move(w));
   }
   return walkers;

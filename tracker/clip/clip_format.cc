@@ -191,6 +191,18 @@ std::vector<ClipPerson> ReadPeople(const JsonReader& in, const json& people, int
 
 }  // namespace
 
+bool ParsePlacement(const std::string& text, ClipPlacement* placement) {
+  ClipPlacement p;
+  p.placed = true;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &p.at_x_mm, &p.at_z_mm, &p.heading_deg, &p.delay_s, &end) != 4 ||
+      !std::isfinite(p.at_x_mm) || !std::isfinite(p.at_z_mm) || !std::isfinite(p.heading_deg) ||
+      !std::isfinite(p.delay_s))
+    return false;
+  *placement = p;
+  return true;
+}
+
 std::string ClipFrameName(int frame) {
   char name[32];
   std::snprintf(name, sizeof name, "%06d.png", frame);

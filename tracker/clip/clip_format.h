@@ -81,6 +81,9 @@ struct ClipPlacement {
   double delay_s = 0;              // its middle frame, after the first walker's
 };
 
+// "X,Z,HEADING,DELAY" (jgpm render --walk): four finite numbers.
+bool ParsePlacement(const std::string& text, ClipPlacement* placement);
+
 struct ClipPerson {
   int id = 0;  // 1, 2, ... in the order given
   std::string source_asf, source_amc;

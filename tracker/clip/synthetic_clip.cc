@@ -243,6 +243,12 @@ void CheckWalkers(const std::vector<ClipWalker>& walkers, const ClipOptions& opt
 
 }  // namespace
 
+ClipBodyOptions WalkerBody(const ClipBodyOptions& first, int index) {
+  ClipBodyOptions body = first;
+  body.body_seed += static_cast<uint64_t>(index);
+  return body;
+}
+
 int WalkerTrack::Find(int clip_frame) const {
   const auto it = std::lower_bound(clip_frames.begin(), clip_frames.end(), clip_frame);
   return it != clip_frames.end() && *it == clip_frame ? static_cast<int>(it - clip_frames.begin()) : -1;

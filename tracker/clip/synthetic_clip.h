@@ -71,6 +71,11 @@ struct ClipWalker {
   ClipPlacement placement;
 };
 
+// The body of walker `index` (from 0) of a clip whose options give `first`'s: the same
+// clothing and width scale, another person for each (body seed + index), so that the
+// first keeps the body a one-walker clip would have.
+ClipBodyOptions WalkerBody(const ClipBodyOptions& first, int index);
+
 // The clip frames' poses of one walker: the source frame and joints (placed) of every
 // clip frame it is in the scene.
 struct WalkerTrack {

@@ -29,7 +29,21 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
       in.Fail("a clip name may hold only letters, digits, '_', '-' and '.', found " + Quote(tokens[0]));
     }
     if (!names.insert(clip.name).second) in.Fail("clip " + Quote(tokens[0]) + " named twice");
-    if (!ParseTrialId(std::string(tokens[1]), &clip.trial)) in.Fail("expected a trial id such as 07_01, found " + Quote(tokens[1]));
+    std::vector<std::string_view> trials;
+    for (std::string_view rest = tokens[1];;) {
+      const size_t plus = rest.find('+');
+      trials.push_back(rest.substr(0, plus));
+      if (plus == std::string_view::npos) break;
+      rest = rest.substr(plus + 1);
+    }
+    if (trials.size() > 8) in.Fail("at most 8 walkers, found " + std::to_string(trials.size()));
+    for (size_t w = 0; w < trials.size(); ++w) {
+      TrialId id;
+      if (!ParseTrialId(std::string(trials[w]), &id))
+        in.Fail("expected a trial id such as 07_01 (or several joined by '+'), found " + Quote(tokens[1]));
+      if (w == 0) clip.trial = id;
+      else clip.others.push_back(id);
+    }
     ClipOptions& o = clip.options;
     for (size_t i = 2; i < tokens.size(); i += 2) {
       const std::string option(tokens[i]);
@@ -63,12 +77,21 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
       } else if (option == "--occluders") o.scene.occluders = in.ParseInt(value, what);
       else if (option == "--calibration-error") o.calibration_error = in.ParseDouble(value, what);
       else if (option == "--seed") o.seed = static_cast<uint64_t>(in.ParseInt(value, what));
+      else if (option == "--walk") {
+        ClipPlacement walk;
+        if (!ParsePlacement(std::string(value), &walk)) in.Fail(what + ": expected X_MM,Z_MM,HEADING_DEG,DELAY_S");
+        clip.walks.push_back(walk);
+      }
       else in.Fail("unknown render option " + Quote(tokens[i]));
       clip.options_text += (clip.options_text.empty() ? "" : " ") + option + " " + std::string(value);
     }
     if (o.rig.kind == RigKind::kWebcam && clip.options_text.find("--cameras") == std::string::npos) {
       o.rig.num_cameras = 1;  // the webcam rig's own
     }
+    if (!clip.walks.empty() && clip.walks.size() != trials.size())
+      in.Fail("expected one --walk per walker (" + std::to_string(trials.size()) + "), found " +
+              std::to_string(clip.walks.size()));
+    if (!clip.walks.empty() && clip.walks[0].delay_s != 0) in.Fail("the first walker's --walk delay must be 0");
     o.contact_sheet = false;
     std::string why;
     if (!o.Check(&why)) in.Fail(why);
@@ -96,12 +119,22 @@ void RenderTrackingSuite(const std::vector<SuiteClip>& clips, const std::functio
     }
     // Absolute paths: the ground truth names the source, read later from anywhere.
     const fs::path root = data_root();
-    const fs::path asf = fs::absolute(TrialAsfPath(root, clip.trial)).lexically_normal();
-    const fs::path amc = fs::absolute(TrialAmcPath(root, clip.trial)).lexically_normal();
-    const Skeleton skeleton = ReadAsf(asf);
-    Motion motion = ReadAmc(amc, skeleton);
-    motion.frames_per_second = 120;  // CMU's rate (AMC stores none)
-    RenderClip(skeleton, motion, {asf.string(), amc.string()}, {}, clip.options, out.string());
+    std::vector<TrialId> trials = {clip.trial};
+    trials.insert(trials.end(), clip.others.begin(), clip.others.end());
+    std::vector<ClipWalker> walkers;
+    for (size_t w = 0; w < trials.size(); ++w) {
+      ClipWalker walker;
+      const fs::path asf = fs::absolute(TrialAsfPath(root, trials[w])).lexically_normal();
+      const fs::path amc = fs::absolute(TrialAmcPath(root, trials[w])).lexically_normal();
+      walker.skeleton = ReadAsf(asf);
+      walker.motion = ReadAmc(amc, walker.skeleton);
+      walker.motion.frames_per_second = 120;  // CMU's rate (AMC stores none)
+      walker.source = {asf.string(), amc.string()};
+      walker.body = WalkerBody(clip.options.body, static_cast<int>(w));
+      if (!clip.walks.empty()) walker.placement = clip.walks[w];
+      walkers.push_back(std::move(walker));
+    }
+    RenderClip(walkers, {}, clip.options, out.string());
     if (progress) progress(clip, true);
   }
 }

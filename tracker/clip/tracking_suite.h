@@ -1,6 +1,8 @@
 // The tracking benchmark's clips (datasets_scripts/tracking_suite.txt): one clip a line,
-// `NAME TRIAL [jgpm render options]`, '#' comments. Rendering the suite makes each clip
-// folder that is not there yet.
+// `NAME TRIAL [jgpm render options]`, '#' comments. TRIAL may be several joined by '+'
+// (07_01+35_10: several walkers, datasets_scripts/crowd_suite.txt), each placed by a
+// --walk (one per trial, or none). Rendering the suite makes each clip folder that is not
+// there yet.
 #pragma once
 
 #include <filesystem>
@@ -15,7 +17,9 @@ namespace jgpm {
 
 struct SuiteClip {
   std::string name;      // e.g. "07_01-4cam"
-  TrialId trial;         // e.g. 07_01
+  TrialId trial;         // e.g. 07_01: the (first) walker's
+  std::vector<TrialId> others;         // the other walkers' trials, in order
+  std::vector<ClipPlacement> walks;    // --walk: none, or one per walker
   ClipOptions options;   // the line's render options over the defaults
   std::string options_text;
 };
@@ -24,7 +28,8 @@ struct SuiteClip {
 // repeated name. Options understood (as `jgpm render` has them): --cameras --width
 // --height --fps --max-frames --ring-radius --sensor-noise --mask-noise --holes --clutter
 // --lighting --drop-rate --width-scale --seed --rig --body-seed --clothing --bag --shadow
-// --occluders --calibration-error (--bag and --shadow take no value).
+// --occluders --calibration-error --walk (--bag and --shadow take no value; --walk once per
+// walker).
 std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::string& source);
 std::vector<SuiteClip> ReadTrackingSuite(const std::filesystem::path& path);
 

@@ -2,6 +2,8 @@
 // each malformed line is refused naming the file, the line and what was expected.
 #include "tracker/clip/tracking_suite.h"
 
+#include <algorithm>
+#include <set>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -87,6 +89,52 @@ TEST(TrackingSuite, TheShippedSuitesParse) {
            o.calibration_error > 0 && o.rig.kind != RigKind::kRing;
   }
   EXPECT_TRUE(body && clothing && shadow && occluders && calibration && rig && subject131 && all);
+}
+
+// Several walkers: trials joined by '+', one --walk each.
+TEST(TrackingSuite, SeveralWalkersWithTheirWalks) {
+  const std::vector<SuiteClip> clips =
+      ParseTrackingSuite("x 07_01+35_10+39_12 --walk 0,0,0,0 --walk 10,20,90,0.5 --walk -1,-2,180,-0.25\n", "s.txt");
+  ASSERT_EQ(clips.size(), 1u);
+  EXPECT_EQ(clips[0].trial.name, "07_01");
+  ASSERT_EQ(clips[0].others.size(), 2u);
+  EXPECT_EQ(clips[0].others[1].name, "39_12");
+  ASSERT_EQ(clips[0].walks.size(), 3u);
+  EXPECT_EQ(clips[0].walks[1].at_z_mm, 20);
+  EXPECT_EQ(clips[0].walks[2].delay_s, -0.25);
+  EXPECT_TRUE(clips[0].walks[2].placed);
+  for (const auto& [text, phrase] : std::vector<std::pair<std::string, std::string>>{
+           {"x 07_01+35_10 --walk 0,0,0,0\n", "one --walk per walker (2), found 1"},
+           {"x 07_01+ --cameras 2\n", "several joined by '+'"},
+           {"x 07_01 --walk 0,0,zero,0\n", "X_MM,Z_MM,HEADING_DEG,DELAY_S"},
+           {"x 07_01+35_10 --walk 0,0,0,1 --walk 0,0,0,0\n", "first walker's --walk delay must be 0"},
+           {"x 07_01+07_01+07_01+07_01+07_01+07_01+07_01+07_01+07_01\n", "at most 8 walkers"}}) {
+    const std::string line = text;  // (clang 14 cannot capture a structured binding)
+    test::ExpectInputError([&line] { ParseTrackingSuite(line, "s.txt"); }, {"s.txt:1", phrase});
+  }
+}
+
+// The crowd suite: test-split trials only, 2, 3 and 5 walkers, each placed, a surveillance
+// rig among them.
+TEST(TrackingSuite, TheCrowdSuiteHasTwoThreeAndFiveWalkersOfTheTestSplit) {
+  const std::vector<SuiteClip> clips =
+      ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts/crowd_suite.txt");
+  const std::vector<TrialId> test_split = test::SplitTrials("test");
+  std::set<size_t> walkers;
+  bool surveillance = false;
+  for (const SuiteClip& c : clips) {
+    std::vector<TrialId> trials = {c.trial};
+    trials.insert(trials.end(), c.others.begin(), c.others.end());
+    for (const TrialId& t : trials) {
+      EXPECT_TRUE(std::any_of(test_split.begin(), test_split.end(), [&](const TrialId& s) { return s.name == t.name; }))
+          << c.name << ": " << t.name;
+    }
+    EXPECT_EQ(c.walks.size(), trials.size()) << c.name;
+    walkers.insert(trials.size());
+    surveillance |= c.options.rig.kind == RigKind::kSurveillance;
+  }
+  EXPECT_EQ(walkers, (std::set<size_t>{2, 3, 5}));
+  EXPECT_TRUE(surveillance);
 }
 
 TEST(TrackingSuite, TheShippedSuiteParses) {
