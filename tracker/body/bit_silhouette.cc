@@ -68,6 +68,16 @@ void BitMask::DilatedRow(int v, uint64_t* out) const {
   if (width_ % 64) out[words_ - 1] &= ~uint64_t{0} >> (64 - width_ % 64);
 }
 
+void BitMask::Or(const BitMask& other) {
+  if (other.first_row_ == other.last_row_) return;
+  for (int v = other.first_row_; v < other.last_row_; ++v) {
+    uint64_t* out = &bits_[static_cast<size_t>(v) * words_];
+    const uint64_t* in = other.row(v);
+    for (int w = 0; w < words_; ++w) out[w] |= in[w];
+  }
+  MarkRows(other.first_row_, other.last_row_ - 1);
+}
+
 void BitMask::DilateInto(BitMask* out) const {
   *out = BitMask(width_, height_);
   if (first_row_ == last_row_) return;

@@ -55,6 +55,8 @@ class BitMask {
   int last_row() const { return last_row_; }
   void Clear();
   int Count() const;
+  // Sets every pixel set in `other` (same size).
+  void Or(const BitMask& other);
   // This mask grown by one pixel (3 x 3 square) into `out` (same size).
   void DilateInto(BitMask* out) const;
   // Row v of this mask grown by one pixel, into `out` (words_per_row() words).

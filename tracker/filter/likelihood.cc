@@ -64,8 +64,9 @@ SilhouetteLikelihood::Workspace SilhouetteLikelihood::NewWorkspace() const {
   return w;
 }
 
-CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::Rect& region) const {
-  return CameraObservation(mask, region, options_.truncation_px, options_.max_hole_px);
+CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::Rect& region,
+                                                const cv::Mat& hidden) const {
+  return CameraObservation(mask, region, options_.truncation_px, options_.max_hole_px, hidden);
 }
 
 double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,

@@ -84,8 +84,8 @@ class SilhouetteLikelihood {
   Workspace NewWorkspace() const;
 
   // A camera's mask prepared for Cost (distances truncated as the options say), with the
-  // region where the person is expected.
-  CameraObservation Observe(const cv::Mat& mask, const cv::Rect& region) const;
+  // region where the person is expected, and where others are drawn (CameraObservation).
+  CameraObservation Observe(const cv::Mat& mask, const cv::Rect& region, const cv::Mat& hidden = cv::Mat()) const;
 
   int NumCameras() const { return static_cast<int>(renderers_.size()); }
   const BitSilhouetteRenderer& renderer(int camera) const { return renderers_[camera]; }

@@ -7,9 +7,15 @@
 
 namespace jgpm {
 
-CameraObservation::CameraObservation(const cv::Mat& mask, cv::Rect region, double truncation_px, int max_hole_px)
+CameraObservation::CameraObservation(const cv::Mat& mask, cv::Rect region, double truncation_px, int max_hole_px,
+                                     const cv::Mat& hidden)
     : mask_(mask), truncation_px_(truncation_px) {
   if (mask_.empty()) return;
+  if (!hidden.empty()) {
+    CV_Assert(hidden.size() == mask_.size() && hidden.type() == CV_8UC1);
+    mask_ = mask_.clone();  // the caller's frame stays as it was
+    mask_.setTo(0, hidden);
+  }
   const cv::Rect image(0, 0, mask_.cols, mask_.rows);
   region_ = region & image;
   foreground_ = cv::countNonZero(mask_);
@@ -45,11 +51,16 @@ CameraObservation::CameraObservation(const cv::Mat& mask, cv::Rect region, doubl
       }
     }
   }
+  if (!hidden.empty()) mask_.setTo(0, hidden);  // a hole filled over someone else is theirs
   region_bits_ = BitMask::FromMat(mask_, region_);
   region_bits_.DilateInto(&region_grown_);
   region_count_ = region_bits_.Count();
-  const cv::Mat background = mask_(window_) == 0;
-  if (cv::countNonZero(mask_(window_)) == 0) return;  // no foreground near
+  cv::Mat background = mask_(window_) == 0;
+  if (!hidden.empty()) {
+    region_grown_.Or(BitMask::FromMat(hidden, image));
+    background.setTo(0, hidden(window_));
+  }
+  if (cv::countNonZero(background) == background.total()) return;  // no foreground near
   // distanceTransform measures to the nearest zero pixel: zeros where the foreground is.
   cv::distanceTransform(background, distance_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   // Distances are to pixel centres: a point on the foreground's edge is half a pixel (a

@@ -25,9 +25,15 @@ class CameraObservation {
   // the window are filled first (a segmentation's speckle, not the gap between a limb and
   // the body). Distances are truncated at `truncation_px`. An empty mask (nobody in view)
   // is valid.
-  CameraObservation(const cv::Mat& mask, cv::Rect region, double truncation_px, int max_hole_px = 0);
+  // `hidden` (may be empty; else CV_8UC1 of the mask's size): where other people are drawn
+  // (several people tracked at once): their pixels are neither foreground this person must
+  // explain nor background it may not cover (behind them it could be; in front of them it
+  // could cover them), so the body pays nothing there either way: they leave the mask, and
+  // count as foreground for the body's outline and its pixels outside the mask.
+  CameraObservation(const cv::Mat& mask, cv::Rect region, double truncation_px, int max_hole_px = 0,
+                    const cv::Mat& hidden = cv::Mat());
 
-  // The mask with the window's holes filled.
+  // The mask with the window's holes filled (and without the hidden pixels).
   const cv::Mat& mask() const { return mask_; }
   bool empty() const { return mask_.empty(); }
   // Foreground pixels in the whole image.
@@ -48,7 +54,8 @@ class CameraObservation {
   const cv::Rect& region() const { return region_; }
   const cv::Rect& window() const { return window_; }
   const BitMask& region_bits() const { return region_bits_; }
-  const BitMask& region_bits_grown() const { return region_grown_; }  // grown by a pixel
+  const BitMask& region_bits_grown() const { return region_grown_; }  // grown by a pixel,
+                                                                       // and the hidden pixels
   int region_count() const { return region_count_; }
 
  private:

@@ -406,7 +406,11 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // take about a millisecond per camera).
   std::vector<CameraObservation> observations(frame.masks.size());
   pool_.For(static_cast<int>(frame.masks.size()), [&](int begin, int end, int) {
-    for (int c = begin; c < end; ++c) observations[c] = likelihood_.Observe(alignment_.Apply(c, frame.masks[c]), regions[c]);
+    for (int c = begin; c < end; ++c) {
+      // Others' drawings are in the model's cameras already: not aligned again.
+      const cv::Mat hidden = c < static_cast<int>(frame.hidden.size()) ? frame.hidden[c] : cv::Mat();
+      observations[c] = likelihood_.Observe(alignment_.Apply(c, frame.masks[c]), regions[c], hidden);
+    }
   });
   const AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (fresh_) {

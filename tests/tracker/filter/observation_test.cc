@@ -99,5 +99,33 @@ TEST(CameraObservation, NobodyOrNowhereGivesTheTruncation) {
   EXPECT_GT(nowhere.Foreground(), 0);
 }
 
+// Where someone else is drawn (several people tracked at once) the person pays nothing
+// either way: those pixels leave the foreground to explain, count as foreground for the
+// distance (against brute force over the mask with them set) and for the body's pixels
+// outside the mask, and the caller's mask is untouched.
+TEST(CameraObservation, PixelsOfOthersAreNeitherToExplainNorForbidden) {
+  const Scene s = MakeScene();
+  cv::Mat hidden = cv::Mat::zeros(s.mask.size(), CV_8UC1);
+  cv::rectangle(hidden, cv::Rect(30, 50, 40, 25), cv::Scalar(255), cv::FILLED);  // over the legs and beyond
+  const cv::Mat given = s.mask.clone();
+  const CameraObservation o(s.mask, s.region, kTruncation, 60, hidden);
+  EXPECT_EQ(cv::countNonZero(s.mask != given), 0);
+  cv::Mat to_explain = s.filled.clone();
+  to_explain.setTo(0, hidden);
+  EXPECT_EQ(o.region_count(), cv::countNonZero(to_explain(s.region)));
+  EXPECT_EQ(cv::countNonZero(o.mask() & hidden), 0);
+  const cv::Mat drawable = s.filled | hidden;
+  for (int v = s.region.y; v < s.region.br().y; v += 3)
+    for (int u = s.region.x; u < s.region.br().x; u += 3)
+      ASSERT_NEAR(o.DistanceToForeground(u, v), BruteDistance(drawable, u, v), 1e-4) << u << ", " << v;
+  const cv::Mat grown = o.region_bits_grown().ToMat();
+  EXPECT_EQ(cv::countNonZero(hidden & ~grown), 0);  // every hidden pixel may be drawn on
+  // Without the hidden pixels nothing changes from the plain observation.
+  const CameraObservation plain(s.mask, s.region, kTruncation, 60);
+  const CameraObservation none(s.mask, s.region, kTruncation, 60, cv::Mat::zeros(s.mask.size(), CV_8UC1));
+  EXPECT_EQ(none.region_count(), plain.region_count());
+  EXPECT_EQ(cv::countNonZero(none.region_bits_grown().ToMat() != plain.region_bits_grown().ToMat()), 0);
+}
+
 }  // namespace
 }  // namespace jgpm
