@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <set>
 #include <thread>
 
 #include <opencv2/highgui.hpp>
@@ -44,6 +45,7 @@ struct TrackArguments {
   double max_clock_offset_s = 2;
   double calibration_seconds = 30;
   std::string person = "auto";
+  std::string people = "one";
 };
 
 // The first Ctrl-C (or SIGTERM) ends tracking and what was tracked is written; the
@@ -112,6 +114,8 @@ void RunTrack(TrackArguments a) {
   FrameSourceSpec& spec = a.job.source;
   if (!a.cameras.empty()) spec.clip_cameras = ParseCameraList(a.cameras);
   a.job.tracker.person = ParsePersonOption(a.person);
+  a.job.people = a.people == "all";
+  if (a.job.people && a.person != "auto") ThrowInputError("--person", "chooses one person; --people all takes everyone");
   if (!a.size.empty()) ParseSizeOption(a.size, &spec.device_width, &spec.device_height);
   spec.clip_foreground = !spec.clip.empty() && !a.foreground.empty();
   spec.foreground.method = a.foreground == "knn" ? ForegroundMethod::kKnn : ForegroundMethod::kMog2;
@@ -171,12 +175,26 @@ void RunTrack(TrackArguments a) {
     predicted += f.status == TrackStatus::kPredicted;
     lost += f.status == TrackStatus::kLost;
   }
-  const int n = static_cast<int>(run.frames.size());
-  std::printf("tracked %d frames (%d tracked, %d predicted, %d lost) of %s with %s (%s space, %d x %d particles x layers, "
-              "%s start) at %.1f frames/s\n",
-              n, tracked, predicted, lost, run.source.c_str(), run.model_path.c_str(), run.state_space.c_str(),
-              run.options.annealing.particles, run.options.annealing.layers, run.init.c_str(),
-              run.tracking_seconds > 0 ? n / run.tracking_seconds : 0.0);
+  const int n = static_cast<int>(a.job.people ? result.people.size() : run.frames.size());
+  if (a.job.people) {
+    std::set<int> ids;
+    long person_frames = 0;
+    for (const PeopleFrame& f : result.people) {
+      person_frames += static_cast<long>(f.people.size());
+      for (const PersonFrame& p : f.people) ids.insert(p.id);
+    }
+    std::printf("tracked %d frames of %s with %s: %zu people, %.2f a frame on average, at %.1f frames/s (%.1f ms a "
+                "person a frame)\n",
+                n, run.source.c_str(), run.model_path.c_str(), ids.size(), n ? static_cast<double>(person_frames) / n : 0.0,
+                run.tracking_seconds > 0 ? n / run.tracking_seconds : 0.0,
+                person_frames ? 1000 * run.tracking_seconds / person_frames : 0.0);
+  } else {
+    std::printf("tracked %d frames (%d tracked, %d predicted, %d lost) of %s with %s (%s space, %d x %d particles x "
+                "layers, %s start) at %.1f frames/s\n",
+                n, tracked, predicted, lost, run.source.c_str(), run.model_path.c_str(), run.state_space.c_str(),
+                run.options.annealing.particles, run.options.annealing.layers, run.init.c_str(),
+                run.tracking_seconds > 0 ? n / run.tracking_seconds : 0.0);
+  }
   std::string working;
   for (size_t c = 0; c < run.cameras.size() && c < result.working_cameras.size(); ++c) {
     const Camera& w = result.working_cameras[c];
@@ -194,6 +212,17 @@ void RunTrack(TrackArguments a) {
               "table, decoding, background subtraction and writing the outputs)\n",
               result.wall_seconds, run.tracking_seconds,
               run.tracking_seconds > 0 ? result.wall_seconds / run.tracking_seconds : 0.0);
+  if (result.mot) {
+    const MotResult& m = *result.mot;
+    std::printf("CLEAR MOT against the clip's %d walkers (paired within 500 mm on the floor): MOTA %.3f, MOTP %.0f mm; "
+                "%d misses, %d false positives, %d identity switches, %d fragmentations over %d true person-frames\n",
+                m.truth_tracks, m.mota, m.motp_mm, m.misses, m.false_positives, m.id_switches, m.fragmentations, m.truth);
+    if (result.matched_bodytrack14)
+      std::printf("error of the paired people over 14 joints (bodytrack) %.1f mm absolute, %.1f root-relative, %.1f "
+                  "Procrustes\n",
+                  result.matched_bodytrack14->absolute_mm, result.matched_bodytrack14->root_relative_mm,
+                  result.matched_bodytrack14->procrustes_mm);
+  }
   if (result.errors) {
     for (const auto& [name, e] : {std::pair<const char*, const TrackErrors&>{"14 joints (bodytrack)", result.errors->bodytrack14},
                                   {"17 gait joints", result.errors->gait17}}) {
@@ -394,6 +423,13 @@ void AddTrackCommands(CLI::App& app) {
                     "of the start's frames) or X,Y (the one nearest that pixel of the first camera's first frame); "
                     "kept by the tracker's prediction")
       ->capture_default_str();
+  track->add_option("--people", a->people,
+                    "one (the person --person chooses) or all: everyone in view, each with an id, born when a new "
+                    "person-sized walker appears and ended when they leave (poses.json lists each frame's people, "
+                    "tracked_ID.bvh per person)")
+      ->check(CLI::IsMember({"one", "all"}))->capture_default_str();
+  track->add_option("--max-people", a->job.multi.max_people, "with --people all: at most this many at once")
+      ->check(CLI::Range(1, 32))->capture_default_str();
   track->add_option("--asf", a->job.asf, "the subject's skeleton, when known: poses are placed on it (size not estimated)")
       ->check(CLI::ExistingFile);
   track->add_option("--out", a->job.out, "new (or empty) folder for poses.json, tracked.bvh/.amc, overlays, track.png")

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <optional>
 
+#include <opencv2/core.hpp>
+
 #include "io/base/enum_name.h"
 #include "io/base/error.h"
 #include "tracker/filter/person_locator.h"
@@ -68,8 +70,8 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
     problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
+  else if (!(restart_within_mm > 0)) problem = "restart_within_mm must be > 0";
   else if (!(min_in_view >= 0 && min_in_view <= 1)) problem = "min_in_view must be in [0, 1]";
-  else if (person.kind == PersonPreference::Kind::kNearPlace) problem = "person: the strongest or nearest a pixel";
   else if (person.kind == PersonPreference::Kind::kNearPixel && !(person.camera >= 0 && person.pixel.allFinite()))
     problem = "person: a camera index >= 0 and a finite pixel";
   if (problem) {
@@ -516,7 +518,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   out_of_view_ = drawn && InView(out.joints_mm) ? 0 : out_of_view_ + 1;
   // A restart looks first where the person was last seen and explained well.
   if (drawn && bad_frames_ == 0)
-    next_choice_ = PersonPreference::Near(Eigen::Vector2d(out.joints_mm(0, 0), out.joints_mm(2, 0)));
+    next_choice_ = PersonPreference::Near(Eigen::Vector2d(out.joints_mm(0, 0), out.joints_mm(2, 0)),
+                                          options_.restart_within_mm);
   const bool left = out_of_view_ >= options_.lost_frames;
   if (left && !seen.found) seen = located();
   // Someone seen far from where the dynamics put the person is someone or something else:
@@ -592,6 +595,19 @@ void Tracker::ExactPose(const Eigen::VectorXd& state, Eigen::VectorXd* pose_deg,
   *pose_deg = state_model_->Pose(state.data());
   const PlacementIndex p = state_model_->placement();
   placer_.Place(pose_deg->data(), state[p.x], state[p.z], state[p.heading], state[p.size], joints_mm);
+}
+
+void Tracker::DrawEstimate(const TrackedFrame& frame, std::vector<cv::Mat>* masks) const {
+  if (frame.state.size() == 0 || frame.joints_mm.cols() == 0) return;
+  std::vector<Capsule> capsules;
+  body_.Place(frame.joints_mm, frame.size * frame.width, frame.build.widths, &capsules);
+  for (size_t c = 0; c < cameras_.size() && c < masks->size(); ++c) {
+    BitMask drawn(cameras_[c].width, cameras_[c].height);
+    likelihood_.renderer(static_cast<int>(c)).Draw(capsules, &drawn);
+    cv::Mat& mask = (*masks)[c];
+    if (mask.empty()) mask = cv::Mat::zeros(cameras_[c].height, cameras_[c].width, CV_8UC1);
+    cv::bitwise_or(mask, drawn.ToMat(), mask);
+  }
 }
 
 std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,

@@ -47,6 +47,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -125,6 +126,10 @@ struct TrackerOptions {
   // look, a hidden person's return, a loss), and a restart takes whoever is nearest where
   // they were last explained well: a walker passing another keeps their place.
   PersonPreference person;
+  // A restart takes only someone within this of where the person was last explained well
+  // (infinite: whoever is nearest). Several people tracked at once set it (multi_tracker.h):
+  // there the nearest may be somebody else's leftovers.
+  double restart_within_mm = std::numeric_limits<double>::infinity();
 
   bool Check(std::string* why) const;
 };
@@ -183,6 +188,9 @@ class Tracker {
   bool StartFromFrames(const std::vector<Frame>& frames);
   // One frame.
   TrackedFrame Step(const Frame& frame);
+  // An estimate's silhouette (as Step drew it to score it) set in each camera's CV_8UC1
+  // mask, the cameras' size (not cleared first); nothing for an estimate without a state.
+  void DrawEstimate(const TrackedFrame& frame, std::vector<cv::Mat>* masks) const;
   // The exact pose and bone ends of a state, from the prior rather than the pose table
   // (as Step reports them).
   void ExactPose(const Eigen::VectorXd& state, Eigen::VectorXd* pose_deg, Eigen::Matrix3Xd* joints_mm) const;

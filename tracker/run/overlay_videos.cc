@@ -43,7 +43,8 @@ void OverlayVideos::Draw(Job* job) const {
   if (job->drawn) return;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     const cv::Mat image = job->dimmed && !job->images[c].empty() ? cv::Mat(job->images[c] * 0.5) : job->images[c];
-    job->images[c] = OverlayFrame(image, cameras_[c], job->estimate, job->capsules, skeleton_);
+    job->images[c] = job->several ? OverlayPeopleFrame(image, cameras_[c], job->estimate.index, job->people, skeleton_)
+                                  : OverlayFrame(image, cameras_[c], job->estimate, job->capsules, skeleton_);
   }
   job->drawn = true;
 }
@@ -63,6 +64,28 @@ std::vector<cv::Mat> OverlayVideos::AddAndDraw(const Frame& frame, const Tracked
   Job job = MakeJob(frame, estimate);
   Draw(&job);
   std::vector<cv::Mat> shown = job.images;
+  Push(std::move(job));
+  return shown;
+}
+
+std::vector<cv::Mat> OverlayVideos::AddPeople(const Frame& frame,
+                                              const std::vector<std::pair<int, TrackedFrame>>& people,
+                                              const std::function<const BodyModel&(int)>& body_of, bool draw_now) {
+  TrackedFrame index;
+  index.index = frame.index;
+  Job job = MakeJob(frame, index);
+  job.several = true;
+  for (const auto& [id, estimate] : people) {
+    OverlayPerson p{id, estimate, {}};
+    if (estimate.state.size())
+      body_of(id).Place(estimate.joints_mm, estimate.size * estimate.width, estimate.build.widths, &p.capsules);
+    job.people.push_back(std::move(p));
+  }
+  std::vector<cv::Mat> shown;
+  if (draw_now) {
+    Draw(&job);
+    shown = job.images;
+  }
   Push(std::move(job));
   return shown;
 }

@@ -9,6 +9,8 @@
 #include <condition_variable>
 #include <deque>
 #include <exception>
+#include <functional>
+#include <utility>
 #include <filesystem>
 #include <mutex>
 #include <thread>
@@ -21,6 +23,7 @@
 #include "tracker/body/body_model.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/frames/frame_source.h"
+#include "tracker/run/track_output.h"
 
 namespace jgpm {
 
@@ -40,6 +43,10 @@ class OverlayVideos {
   void Add(const Frame& frame, const TrackedFrame& estimate);
   // The same, drawn now and returned (to show them), written in the background.
   std::vector<cv::Mat> AddAndDraw(const Frame& frame, const TrackedFrame& estimate);
+  // Several people, each drawn with its own body (`body_of(id)`; track_output.h's
+  // OverlayPeopleFrame). Drawn now and returned when `draw_now`.
+  std::vector<cv::Mat> AddPeople(const Frame& frame, const std::vector<std::pair<int, TrackedFrame>>& people,
+                                 const std::function<const BodyModel&(int)>& body_of, bool draw_now = false);
   // Writes what waits and closes the videos; rethrows a writing error.
   void Close();
 
@@ -50,6 +57,8 @@ class OverlayVideos {
     bool drawn = false;
     TrackedFrame estimate;
     std::vector<Capsule> capsules;
+    bool several = false;               // people (AddPeople), else the one estimate
+    std::vector<OverlayPerson> people;
   };
   Job MakeJob(const Frame& frame, const TrackedFrame& estimate);
   void Draw(Job* job) const;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <map>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -42,6 +43,94 @@ double LegLength(const Eigen::Matrix3Xd& joints, const std::vector<std::string>&
   const int hip = BoneIndex(names, "lhipjoint"), knee = BoneIndex(names, "lfemur"), ankle = BoneIndex(names, "ltibia");
   if (hip < 0 || knee < 0 || ankle < 0) return 0;
   return (joints.col(knee) - joints.col(hip)).norm() + (joints.col(ankle) - joints.col(knee)).norm();
+}
+
+// The truth's joints of walker `id` in clip frame `frame` (a one-walker clip's: id 1);
+// empty when that walker is not in the scene then.
+Eigen::Matrix3Xd WalkerJoints(const ClipGroundTruth& truth, int id, int frame) {
+  if (truth.people.empty()) return id == 1 ? truth.frames.at(frame).joints_mm : Eigen::Matrix3Xd();
+  for (const ClipPersonFrame& f : truth.people.at(id - 1).frames)
+    if (f.frame == frame) return f.joints_mm;
+  return Eigen::Matrix3Xd();
+}
+
+// --people all: CLEAR MOT and the paired people's pose error against a clip's walkers, and
+// the results folder (poses.json with each frame's people, tracked_ID.bvh per person, the
+// cameras, the overlays).
+void FinishPeople(const TrackJobOptions& o, const ClipFrameSource* clip, const GaitModel& model,
+                  const BodyModel& any_body, const std::function<const BodyModel&(int)>& body_of, OutputFolder* folder,
+                  std::optional<OverlayVideos>* overlays, bool images_now, TrackJobResult* result) {
+  const TrackRun& run = result->run;
+  const std::vector<PeopleFrame>& people = result->people;
+  if (clip) {
+    const ClipGroundTruth& truth = clip->truth();
+    const std::vector<std::vector<MotPoint>> walkers = TruePeople(truth, people.back().index + 1);
+    std::vector<MotFrame> frames(people.size());
+    for (size_t k = 0; k < people.size(); ++k) {
+      if (people[k].index < static_cast<int>(walkers.size())) frames[k].truth = walkers[people[k].index];
+      for (const PersonFrame& p : people[k].people) {
+        if (p.frame.status == TrackStatus::kLost || p.frame.joints_mm.cols() == 0) continue;
+        frames[k].tracked.push_back({p.id, Eigen::Vector2d(p.frame.joints_mm(0, 0), p.frame.joints_mm(2, 0))});
+      }
+    }
+    result->mot = ClearMot(frames);
+    std::vector<Eigen::Matrix3Xd> estimates, true_joints;
+    for (const MotPair& pair : result->mot->paired) {
+      const PeopleFrame& f = people[pair.frame];
+      for (const PersonFrame& p : f.people)
+        if (p.id == pair.tracked_id) estimates.push_back(p.frame.joints_mm);
+      true_joints.push_back(WalkerJoints(truth, pair.truth_id, f.index));
+    }
+    if (!estimates.empty()) {
+      const std::vector<std::string>& names = truth.people.empty() ? truth.joint_names : truth.people[0].joint_names;
+      result->matched_bodytrack14 =
+          CompareTracks(estimates, model.skeleton().BoneNames(), true_joints, names, Bodytrack14());
+    }
+  }
+  if (!folder) return;
+  const fs::path dir = folder->partial();
+  OutputBatch batch;
+  batch.Add(dir / "poses.json", FormatJson(PeoplePosesJson(run, model.skeleton(), people, result->mot)));
+  std::map<int, TrackRun> runs;  // each person's frames, for their BVH
+  for (const PeopleFrame& f : people) {
+    for (const PersonFrame& p : f.people) {
+      auto [it, fresh] = runs.try_emplace(p.id, run);
+      it->second.frames.push_back(p.frame);
+    }
+  }
+  std::vector<std::string> names = {"poses.json"};
+  for (const auto& [id, person] : runs) {
+    const TrackedMotion motion = MakeTrackedMotion(person, model);
+    const std::string name = "tracked_" + std::to_string(id) + ".bvh";
+    batch.Add(dir / name, FormatBvh(AcclaimToBvh(motion.skeleton, motion.motion)));
+    names.push_back(name);
+  }
+  for (const Camera& c : run.cameras) {
+    batch.Add(dir / (c.name + ".yaml"), FormatCameraYaml({c, true}));
+    names.push_back(c.name + ".yaml");
+  }
+  batch.Commit();
+  if (o.overlays && !images_now) {
+    ClipFrameSourceOptions image_options;
+    image_options.cameras = clip->camera_indices();
+    image_options.exact_masks = o.source.exact_masks;
+    image_options.max_frames = people.back().index + 1;
+    image_options.with_images = true;
+    ClipFrameSource images(o.source.clip, image_options);
+    overlays->emplace(dir, run.cameras, run.fps, any_body, model.skeleton());
+    Frame frame;
+    for (const PeopleFrame& f : people) {
+      if (!images.Next(&frame)) break;
+      std::vector<std::pair<int, TrackedFrame>> drawn;
+      for (const PersonFrame& p : f.people) drawn.emplace_back(p.id, p.frame);
+      (*overlays)->AddPeople(frame, drawn, body_of);
+    }
+  }
+  if (*overlays) (*overlays)->Close();
+  folder->Commit();
+  for (const std::string& name : names) result->written.push_back(fs::path(o.out) / name);
+  if (o.overlays)
+    for (const Camera& c : run.cameras) result->written.push_back(fs::path(o.out) / ("overlay_" + c.name + ".avi"));
 }
 
 }  // namespace
@@ -132,6 +221,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   const auto* clip = dynamic_cast<const ClipFrameSource*>(made.get());
   const auto* video = dynamic_cast<const VideoFrameSource*>(made.get());
   if (o.truth_start && !clip) ThrowInputError("--init truth", "needs a clip's ground truth (--clip)");
+  if (o.truth_start && o.people) ThrowInputError("--init truth", "starts one person; --people all finds everyone");
   const auto source = std::make_unique<WorkingResolutionSource>(std::move(made), o.working, video && video->live());
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
@@ -181,6 +271,9 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   const fs::path dir = folder ? folder->partial() : fs::path();
   std::optional<OverlayVideos> overlays;
   if (folder && o.overlays && images_now) overlays.emplace(dir, run.cameras, run.fps, tracker.body(), model->skeleton());
+  std::optional<MultiTracker> multi;
+  if (o.people) multi.emplace(*model, source->cameras(), tracker_options, o.multi, table);
+  const auto body_of = [&multi](int id) -> const BodyModel& { return multi->body(id); };
   // Files and folders are read ahead while the frame before is tracked; a live camera's
   // newest frame is taken when the tracker is ready for it.
   std::optional<PrefetchSource> ahead;
@@ -212,7 +305,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
         if (!cv::imwrite(path.string(), frame.masks[c])) ThrowInputError(path.string(), "cannot write the mask");
       }
     }
-    if (overlays) {
+    if (overlays && !o.people) {
       if (o.show) {
         o.show(overlays->AddAndDraw(frame, f));
       } else {
@@ -226,7 +319,25 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     if (o.max_seconds > 0 && elapsed >= o.max_seconds) return result.stopped = "time limit reached", true;
     return false;
   };
-  if (o.truth_start) {
+  if (o.people) {
+    const auto on_people = [&](const Frame& frame, PeopleFrame& f) {
+      // The progress line shows the frame as tracked when anyone in it is.
+      TrackedFrame summary;
+      summary.index = f.index;
+      summary.time_s = f.time_s;
+      summary.seconds = f.seconds;
+      for (const PersonFrame& p : f.people)
+        if (p.frame.status == TrackStatus::kTracked) summary.status = TrackStatus::kTracked;
+      on_frame(frame, summary);
+      if (overlays) {
+        std::vector<std::pair<int, TrackedFrame>> people;
+        for (const PersonFrame& p : f.people) people.emplace_back(p.id, p.frame);
+        const std::vector<cv::Mat> shown = overlays->AddPeople(frame, people, body_of, static_cast<bool>(o.show));
+        if (o.show) o.show(shown);
+      }
+    };
+    result.people = TrackPeople(frames, &*multi, on_people, stop);
+  } else if (o.truth_start) {
     tracker.StartAt(TruthGuess(clip->truth(), *model, tracker.state_model()));
     Frame frame;
     while (!stop() && frames->Next(&frame)) {
@@ -238,6 +349,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   }
   if (ahead) ahead->Stop();  // the sources' counts below are the reading thread's
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
+  for (const PeopleFrame& f : result.people) run.tracking_seconds += f.seconds;
   result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (video) {
     if (result.stopped.empty()) result.stopped = video->end_reason();
@@ -246,8 +358,13 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   }
   result.latency_frames = latency_count;
   if (latency_count) result.mean_latency_ms = latency_sum / latency_count;
-  if (run.frames.empty()) {
+  if (run.frames.empty() && result.people.empty()) {
     ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));
+  }
+  if (o.people) {
+    FinishPeople(o, clip, *model, tracker.body(), body_of, folder ? &*folder : nullptr, &overlays, images_now, &result);
+    finished(&result);
+    return result;
   }
 
   if (clip) {

@@ -15,9 +15,11 @@
 #include <vector>
 
 #include "tracker/clip/clip_format.h"
+#include "tracker/filter/multi_tracker.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/frames/frame_source_factory.h"
 #include "tracker/frames/working_resolution.h"
+#include "tracker/run/mot_metrics.h"
 #include "tracker/run/track_output.h"
 
 namespace jgpm {
@@ -38,11 +40,19 @@ struct TrackJobOptions {
   std::function<void(const std::vector<cv::Mat>& overlays)> show;
   TrackerOptions tracker;
   WorkingResolutionOptions working;  // masks brought down to the working resolution
+  // Everyone in view (--people all), each with an id: tracker/filter/multi_tracker.h. The
+  // outputs are poses.json with each frame's people, tracked_ID.bvh per person and
+  // overlays with each person in their colour; `tracker` is every person's.
+  bool people = false;
+  MultiTrackerOptions multi;
 };
 
 struct TrackJobResult {
-  TrackRun run;
+  TrackRun run;                              // one person (run.frames empty with --people all)
   std::optional<RunErrors> errors;           // against the clip's ground truth
+  std::vector<PeopleFrame> people;           // --people all: each frame's people
+  std::optional<MotResult> mot;              // ...against the clip's walkers
+  std::optional<TrackErrors> matched_bodytrack14;  // ...the paired people's pose error
   std::vector<std::filesystem::path> written;
   std::string stopped;  // why the run ended before its source did; "" when it did not
   int skipped = 0;      // frames the source lost (undecodable; a live camera's drops)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <numbers>
 
 #include <opencv2/imgproc.hpp>
@@ -89,7 +90,10 @@ RunErrors EvaluateRun(const TrackRun& run, const Skeleton& skeleton, const std::
           CompareTracks(estimate, bones, truth, truth_bones, Bodytrack14())};
 }
 
-json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optional<RunErrors>& errors) {
+namespace {
+
+// The run's header: what ran on what, with which options and names.
+json PosesHeader(const TrackRun& run, const Skeleton& skeleton) {
   json out;
   out["format"] = "jgpm track";
   out["version"] = 1;
@@ -108,48 +112,61 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
   out["joints_note"] = "joints_mm[j] is the end of bone j (the root: its position), world y up, mm";
   out["measured_joints"] = Gait17();
   out["coordinate_names"] = run.coordinate_names;
+  return out;
+}
+
+// One person's estimate in a frame (without the frame's number and time).
+json EstimateJson(const TrackRun& run, const TrackedFrame& f) {
+  json j;
+  j["status"] = std::string(TrackStatusName(f.status));
+  if (f.state.size() == 0) {
+    j["joints_mm"] = nullptr;
+  } else {
+    const int k = static_cast<int>(f.state.size()) - 6;  // the shared placement (tracker/state/state_model.h)
+    j["joints_mm"] = Points(f.joints_mm);
+    j["root_mm"] = {Round2(f.joints_mm(0, 0)), Round2(f.joints_mm(1, 0)), Round2(f.joints_mm(2, 0))};
+    j["heading_deg"] = f.heading_rad * kDegPerRad;
+    j["rate"] = f.state[k + 3];
+    j["size"] = f.size;
+    j["width"] = f.width;
+    json widths = json::object();
+    for (int r = 0; r < kNumBodyRegions; ++r)
+      widths[std::string(BodyRegionName(static_cast<BodyRegion>(r)))] = f.build.widths[r];
+    j["build"] = {{"widths", widths},
+                  {"legs", f.build.lengths.legs},
+                  {"arms", f.build.lengths.arms},
+                  {"floor_mm", f.build.floor_mm}};
+    json coordinates = json::object();
+    for (size_t c = 0; c < run.coordinate_names.size() && static_cast<int>(c) < k; ++c) {
+      coordinates[run.coordinate_names[c]] = f.state[c];
+    }
+    j["coordinates"] = coordinates;
+  }
+  j["ess"] = f.ess;
+  j["evaluations"] = f.evaluations;
+  json scores = json::array();
+  for (size_t c = 0; c < f.cameras.size(); ++c) {
+    scores.push_back({{"camera", run.cameras[c].name}, {"iou", f.cameras[c].Iou()}, {"cost", f.cameras[c].cost}});
+  }
+  j["cameras"] = scores;
+  return j;
+}
+
+}  // namespace
+
+json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optional<RunErrors>& errors) {
+  json out = PosesHeader(run, skeleton);
   json frames = json::array();
   int tracked = 0, predicted = 0, lost = 0;
   long evaluations = 0;
   for (const TrackedFrame& f : run.frames) {
-    json j;
+    json j = EstimateJson(run, f);
     j["frame"] = f.index;
     j["time_s"] = f.time_s;
-    j["status"] = std::string(TrackStatusName(f.status));
     tracked += f.status == TrackStatus::kTracked;
     predicted += f.status == TrackStatus::kPredicted;
     lost += f.status == TrackStatus::kLost;
     evaluations += f.evaluations;
-    if (f.state.size() == 0) {
-      j["joints_mm"] = nullptr;
-    } else {
-      const int k = static_cast<int>(f.state.size()) - 6;  // the shared placement (tracker/state/state_model.h)
-      j["joints_mm"] = Points(f.joints_mm);
-      j["root_mm"] = {Round2(f.joints_mm(0, 0)), Round2(f.joints_mm(1, 0)), Round2(f.joints_mm(2, 0))};
-      j["heading_deg"] = f.heading_rad * kDegPerRad;
-      j["rate"] = f.state[k + 3];
-      j["size"] = f.size;
-      j["width"] = f.width;
-      json widths = json::object();
-      for (int r = 0; r < kNumBodyRegions; ++r)
-        widths[std::string(BodyRegionName(static_cast<BodyRegion>(r)))] = f.build.widths[r];
-      j["build"] = {{"widths", widths},
-                    {"legs", f.build.lengths.legs},
-                    {"arms", f.build.lengths.arms},
-                    {"floor_mm", f.build.floor_mm}};
-      json coordinates = json::object();
-      for (size_t c = 0; c < run.coordinate_names.size() && static_cast<int>(c) < k; ++c) {
-        coordinates[run.coordinate_names[c]] = f.state[c];
-      }
-      j["coordinates"] = coordinates;
-    }
-    j["ess"] = f.ess;
-    j["evaluations"] = f.evaluations;
-    json scores = json::array();
-    for (size_t c = 0; c < f.cameras.size(); ++c) {
-      scores.push_back({{"camera", run.cameras[c].name}, {"iou", f.cameras[c].Iou()}, {"cost", f.cameras[c].cost}});
-    }
-    j["cameras"] = scores;
     frames.push_back(j);
   }
   out["frames"] = frames;
@@ -161,6 +178,40 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
                     {"lost", lost},
                     {"evaluations_per_frame", n ? static_cast<double>(evaluations) / n : 0.0}};
   if (errors) out["errors"] = {{"gait17", ErrorsJson(errors->gait17)}, {"bodytrack14", ErrorsJson(errors->bodytrack14)}};
+  return out;
+}
+
+json PeoplePosesJson(const TrackRun& run, const Skeleton& skeleton, const std::vector<PeopleFrame>& frames,
+                     const std::optional<MotResult>& mot) {
+  json out = PosesHeader(run, skeleton);
+  out["people_note"] = "each frame's people: those alive, each with the fields of a one-person frame and its id";
+  json list = json::array();
+  std::map<int, std::pair<int, int>> life;  // id -> first, last frame
+  long evaluations = 0;
+  for (const PeopleFrame& f : frames) {
+    json people = json::array();
+    for (const PersonFrame& p : f.people) {
+      json j = EstimateJson(run, p.frame);
+      j["id"] = p.id;
+      people.push_back(j);
+      evaluations += p.frame.evaluations;
+      auto [it, fresh] = life.try_emplace(p.id, f.index, f.index);
+      it->second.second = f.index;
+    }
+    list.push_back({{"frame", f.index}, {"time_s", f.time_s}, {"people", people}, {"born", f.born}, {"ended", f.ended}});
+  }
+  out["frames"] = list;
+  json tracks = json::array();
+  for (const auto& [id, span] : life) tracks.push_back({{"id", id}, {"first_frame", span.first}, {"last_frame", span.second}});
+  const int n = static_cast<int>(frames.size());
+  out["summary"] = {{"frames", n}, {"people", tracks},
+                    {"evaluations_per_frame", n ? static_cast<double>(evaluations) / n : 0.0}};
+  if (mot) {
+    out["clear_mot"] = {{"mota", mot->mota}, {"motp_mm", mot->motp_mm}, {"true_person_frames", mot->truth},
+                        {"pairs", mot->pairs}, {"misses", mot->misses}, {"false_positives", mot->false_positives},
+                        {"id_switches", mot->id_switches}, {"fragmentations", mot->fragmentations},
+                        {"true_people", mot->truth_tracks}, {"match_mm", 500}};
+  }
   return out;
 }
 
@@ -228,6 +279,45 @@ cv::Mat OverlayFrame(const cv::Mat& image, const Camera& camera, const TrackedFr
   }
   char label[96];
   std::snprintf(label, sizeof(label), "%d %s", frame.index, std::string(TrackStatusName(frame.status)).c_str());
+  cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+  cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  return out;
+}
+
+cv::Scalar PersonColour(int id) {
+  static const cv::Scalar kColours[] = {{0, 255, 255}, {255, 128, 0}, {0, 200, 0}, {255, 0, 255},
+                                        {0, 128, 255}, {255, 255, 0}, {128, 0, 255}, {0, 0, 255}};
+  return kColours[(id > 0 ? id - 1 : 0) % std::size(kColours)];
+}
+
+cv::Mat OverlayPeopleFrame(const cv::Mat& image, const Camera& camera, int index,
+                           const std::vector<OverlayPerson>& people, const Skeleton& skeleton) {
+  cv::Mat out = image.empty() ? cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(60, 60, 60)) : image.clone();
+  int tracked = 0;
+  for (const OverlayPerson& p : people) {
+    if (p.frame.state.size() == 0 || p.frame.status == TrackStatus::kLost) continue;
+    tracked += p.frame.status == TrackStatus::kTracked;
+    BitMask mask(camera.width, camera.height);
+    BitSilhouetteRenderer(camera).Draw(p.capsules, &mask);
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(mask.ToMat(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    const cv::Scalar colour = PersonColour(p.id);
+    cv::drawContours(out, contours, -1, colour, 1, cv::LINE_AA);
+    DrawSkeleton(skeleton, camera, p.frame.joints_mm, &out);
+    // The id over the head (the highest bone end), when it is in front of the camera.
+    int top = 0;
+    for (int j = 1; j < p.frame.joints_mm.cols(); ++j)
+      if (p.frame.joints_mm(1, j) > p.frame.joints_mm(1, top)) top = j;
+    Eigen::Vector2d at;
+    if (camera.Project(p.frame.joints_mm.col(top) + Eigen::Vector3d(0, 150, 0), &at)) {
+      const std::string id = std::to_string(p.id) + (p.frame.status == TrackStatus::kPredicted ? "?" : "");
+      const cv::Point where(static_cast<int>(at.x()) - 4, static_cast<int>(at.y()));
+      cv::putText(out, id, where, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+      cv::putText(out, id, where, cv::FONT_HERSHEY_SIMPLEX, 0.5, colour, 1, cv::LINE_AA);
+    }
+  }
+  char label[96];
+  std::snprintf(label, sizeof(label), "%d  %d tracked", index, tracked);
   cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
   cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   return out;

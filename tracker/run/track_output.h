@@ -1,5 +1,6 @@
 // What a tracking run leaves for people and tools, written by `jgpm track` into one folder:
-//   poses.json          per frame: status (tracked, predicted, lost), every bone end (mm,
+//   poses.json          per frame (with --people all: per frame and person, with its id):
+//                       status (tracked, predicted, lost), every bone end (mm,
 //                       named exactly as a clip's ground_truth.json names them, same world
 //                       frame), the root, heading, size, the state's coordinates, effective
 //                       sample size and per-camera overlap; errors when the truth is known.
@@ -23,8 +24,10 @@
 #include "io/base/output_batch.h"
 #include "io/mocap/motion.h"
 #include "prior/model/gait_model.h"
+#include "tracker/filter/multi_tracker.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/frames/frame_source.h"
+#include "tracker/run/mot_metrics.h"
 #include "tracker/run/track_metrics.h"
 
 namespace jgpm {
@@ -52,6 +55,11 @@ RunErrors EvaluateRun(const TrackRun& run, const Skeleton& skeleton, const std::
                       const std::vector<std::string>& truth_bones);
 
 nlohmann::json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optional<RunErrors>& errors);
+// Several people (--people all): each frame holds `people`, each with a one-person frame's
+// fields and its id, and the ids born and ended there; the summary lists each id's first
+// and last frame; CLEAR MOT figures when the truth is known.
+nlohmann::json PeoplePosesJson(const TrackRun& run, const Skeleton& skeleton, const std::vector<PeopleFrame>& frames,
+                               const std::optional<MotResult>& mot);
 
 // The tracked motion on the model's skeleton scaled by the person's median size (as an ASF
 // text, whose `length` unit carries the scale), with the root's translation and heading.
@@ -67,6 +75,18 @@ TrackedMotion MakeTrackedMotion(const TrackRun& run, const GaitModel& model);
 // and a status line.
 cv::Mat OverlayFrame(const cv::Mat& image, const Camera& camera, const TrackedFrame& frame,
                      const std::vector<Capsule>& capsules, const Skeleton& skeleton);
+
+// Several people (jgpm track --people all): each one's outline in its own colour
+// (PersonColour), its skeleton and its id above its head; a line with the frame and how
+// many are tracked.
+struct OverlayPerson {
+  int id = 0;
+  TrackedFrame frame;
+  std::vector<Capsule> capsules;
+};
+cv::Mat OverlayPeopleFrame(const cv::Mat& image, const Camera& camera, int index,
+                           const std::vector<OverlayPerson>& people, const Skeleton& skeleton);
+cv::Scalar PersonColour(int id);  // BGR, distinct for neighbouring ids
 
 // Error over time per joint group (legs, arms, trunk and head), mm.
 cv::Mat ErrorPlot(const RunErrors& errors, const TrackRun& run);

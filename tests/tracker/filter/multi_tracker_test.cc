@@ -1,0 +1,254 @@
+// Several people at once (`jgpm track --people all`, RunTrackJob) on rendered walkers whose
+// truth is exact, scored by CLEAR MOT (tracker/run/mot_metrics.h): two walkers apart are two
+// people with their poses; crossing, and one hidden behind the other, they keep their ids;
+// a shadow and clutter start nobody; a walker who leaves the view ends; one seed gives the
+// same poses.json with one thread or two.
+#include "tracker/filter/multi_tracker.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "io/mocap/amc.h"
+#include "io/mocap/asf.h"
+#include "prior/model/model_file.h"
+#include "prior/model/train.h"
+#include "calibration/camera.h"
+#include "prior/prior_test_support.h"
+#include "test_support.h"
+#include "tracker/clip/synthetic_clip.h"
+#include "tracker/run/track_job.h"
+
+namespace jgpm {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Clips are 320x240: at 160x120 a crossing leaves each walker too few pixels of their own
+// for the small prior below (MOTA 0.82 and a switch, against 1.0 at 320x240).
+// An ML-JGPM torus prior from five training trials (as tracker_test's), made once.
+struct Fixture {
+  test::TempDir dir;
+  fs::path model;
+};
+const Fixture& Shared() {
+  static Fixture fixture;
+  static const bool made = [] {
+    fixture.model = fixture.dir.path() / "mljgpm.json";
+    WriteModelFile(fixture.model, *test::TrainOnFirstWalks(ModelKind::kMljgpmTorus, 5, 5));
+    return true;
+  }();
+  (void)made;
+  return fixture;
+}
+
+ClipWalker Walker(const std::string& trial, ClipPlacement placement, uint64_t body_seed) {
+  ClipWalker w;
+  const std::string subject = trial.substr(0, trial.find('_'));
+  w.source = {(test::CmuRoot() / "subjects" / subject / (subject + ".asf")).string(),
+              (test::CmuRoot() / "subjects" / subject / (trial + ".amc")).string()};
+  w.skeleton = ReadAsf(w.source.asf);
+  w.motion = ReadAmc(w.source.amc, w.skeleton);
+  w.body.body_seed = body_seed;
+  w.placement = placement;
+  return w;
+}
+
+// A clip of the walkers through the default ring (2 cameras, or `cameras`) at 320x240, or
+// through `given` cameras.
+fs::path Render(const std::vector<ClipWalker>& walkers, const fs::path& dir, int cameras = 2, int max_frames = 0,
+                const std::function<void(ClipOptions*)>& more = {}, const std::vector<Camera>& given = {}) {
+  ClipOptions clip;
+  clip.rig.num_cameras = cameras;
+  clip.max_frames = max_frames;
+  clip.contact_sheet = false;
+  if (more) more(&clip);
+  RenderClip(walkers, given, clip, dir.string());
+  return dir;
+}
+
+// A camera 4.5 m from the line z = 0 at a head's height (so that a head behind another is
+// hidden by it), looking across the line at x = `look_x`, a field of view `across_mm` wide
+// there.
+Camera SideCamera(double look_x, double across_mm) {
+  return LookAtCamera("cam0", 320, 240, 160 * 4500 / (across_mm / 2), {look_x, 1600, -4500}, {look_x, 1000, 0});
+}
+
+// A small budget: 150 particles x 4 layers.
+TrackJobOptions Job(const fs::path& clip, int threads = 1, const fs::path& out = {}) {
+  TrackJobOptions job;
+  job.model = Shared().model.string();
+  job.source.clip = clip.string();
+  job.out = out.string();
+  job.overlays = false;
+  job.people = true;
+  job.tracker.threads = threads;
+  job.tracker.annealing.particles = 150;
+  job.tracker.annealing.layers = 4;
+  job.tracker.annealing.seed = 7;
+  return job;
+}
+
+void Print(const char* what, const TrackJobResult& r) {
+  const MotResult& m = *r.mot;
+  std::printf("%-12s MOTA %.3f  MOTP %.0f mm  misses %d  false %d  switches %d  fragments %d  of %d; paired pose %.1f mm "
+              "(14 joints); %.1f frames/s\n",
+              what, m.mota, m.motp_mm, m.misses, m.false_positives, m.id_switches, m.fragmentations, m.truth,
+              r.matched_bodytrack14 ? r.matched_bodytrack14->absolute_mm : -1.0,
+              r.run.tracking_seconds > 0 ? r.people.size() / r.run.tracking_seconds : 0.0);
+}
+
+std::set<int> Ids(const TrackJobResult& r) {
+  std::set<int> ids;
+  for (const PeopleFrame& f : r.people)
+    for (const PersonFrame& p : f.people) ids.insert(p.id);
+  return ids;
+}
+
+// Two walkers 2.5 m apart, walking the same way: two people, each with a pose near theirs.
+// Measured: MOTA 0.975 (each confirmed after 2 frames), 54 mm over bodytrack's 14 joints
+// (the one-person tracker_test's clip at 160x120 and the same budget: 80 mm).
+TEST(MultiTracker, TwoWalkersApartAreTwoPeopleWithTheirPoses) {
+  test::TempDir dir;
+  const fs::path clip = Render({Walker("07_01", {true, 0, -1250, 0, 0}, 0), Walker("35_10", {true, 0, 1250, 0, 0}, 3)},
+                               dir.path() / "apart");
+  const TrackJobResult r = RunTrackJob(Job(clip));
+  Print("apart", r);
+  EXPECT_EQ(r.mot->truth_tracks, 2);
+  EXPECT_EQ(Ids(r).size(), 2u);
+  EXPECT_GE(r.mot->mota, 0.9);
+  EXPECT_EQ(r.mot->id_switches, 0);
+  ASSERT_TRUE(r.matched_bodytrack14);
+  EXPECT_LT(r.matched_bodytrack14->absolute_mm, 130);
+}
+
+// The same two walkers sent across each other's path at the same moment: still two people,
+// and each keeps its id through the crossing.
+TEST(MultiTracker, WalkersCrossingKeepTheirIds) {
+  test::TempDir dir;
+  const fs::path clip = Render({Walker("07_01", {true, 0, 0, 0, 0}, 0), Walker("35_10", {true, 0, 0, 90, 0}, 3)},
+                               dir.path() / "crossing");
+  const TrackJobResult r = RunTrackJob(Job(clip));
+  Print("crossing", r);
+  EXPECT_GE(r.mot->mota, 0.9);
+  EXPECT_EQ(r.mot->id_switches, 0);
+  EXPECT_LE(Ids(r).size(), 3u);
+}
+
+// One camera beside the walk; a walker overtakes a slower one on a parallel line 1.2 m
+// nearer the camera, so that the slower one is behind them for a while (the truth's visible
+// pixels say how long): the hidden one keeps their id after. (Measured: MOTA 0.911; the
+// hidden walker is lost for 8 frames and found again where they were.)
+TEST(MultiTracker, AWalkerHiddenBehindAnotherKeepsTheirId) {
+  test::TempDir dir;
+  const fs::path clip = Render({Walker("07_01", {true, 0, -1200, 0, 0}, 0), Walker("07_04", {true, 0, 0, 0, 0}, 3)},
+                               dir.path() / "hidden", 1, 0, {}, {SideCamera(0, 6000)});
+  const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+  // How many frames in a row a walker shows under half their usual pixels.
+  int longest = 0, hidden = 0;
+  for (const ClipPerson& p : truth.people) {
+    std::vector<int> seen;
+    for (const ClipPersonFrame& f : p.frames) seen.push_back(f.visible_px[0]);
+    std::vector<int> sorted = seen;
+    std::sort(sorted.begin(), sorted.end());
+    const int usual = sorted[sorted.size() / 2];
+    int run = 0;
+    for (int s : seen) {
+      run = 2 * s < usual ? run + 1 : 0;
+      if (run > longest) longest = run, hidden = p.id;
+    }
+  }
+  std::printf("walker %d is mostly hidden for %d frames in a row\n", hidden, longest);
+  ASSERT_GE(longest, 10);
+  const TrackJobResult r = RunTrackJob(Job(clip));
+  Print("hidden", r);
+  EXPECT_EQ(r.mot->id_switches, 0);
+  EXPECT_GE(r.mot->mota, 0.8);
+  // The tracked people at the clip's end are the ones of its start (once confirmed).
+  ASSERT_GT(r.people.size(), 10u);
+  std::set<int> first, last;
+  for (const PersonFrame& p : r.people[10].people) first.insert(p.id);
+  for (const PersonFrame& p : r.people.back().people)
+    if (p.frame.status != TrackStatus::kLost) last.insert(p.id);
+  EXPECT_EQ(first, last);
+}
+
+// One walker, with a shadow on the floor and clutter blobs moving over the masks: one
+// person, nobody else ever born. (Measured MOTA 0.886: the first frames' shadow-stretched
+// blobs place the walker differently in each camera, so the walker is confirmed at frame 9.)
+TEST(MultiTracker, AShadowAndClutterStartNobody) {
+  test::TempDir dir;
+  const fs::path clip = Render({Walker("07_01", {}, 0)}, dir.path() / "shadow", 2, 0, [](ClipOptions* o) {
+    o->scene.shadow = true;
+    o->degradations.clutter_blobs = 3;
+    o->seed = 4;
+  });
+  const TrackJobResult r = RunTrackJob(Job(clip));
+  Print("shadow", r);
+  EXPECT_EQ(Ids(r).size(), 1u);
+  EXPECT_EQ(r.mot->false_positives, 0);
+  EXPECT_GE(r.mot->mota, 0.85);
+}
+
+// A walker who leaves the only camera's view (it sees the first half of the walk) ends,
+// and nobody is reported after that.
+TEST(MultiTracker, AWalkerWhoLeavesEnds) {
+  test::TempDir dir;
+  const fs::path clip =
+      Render({Walker("07_01", {true, 1700, 0, 0, 0}, 0)}, dir.path() / "leaves", 1, 0, {}, {SideCamera(0, 3000)});
+  const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+  const std::vector<std::vector<MotPoint>> in_view = TruePeople(truth, static_cast<int>(truth.frames.size()));
+  int last_in_view = -1;
+  for (size_t k = 0; k < in_view.size(); ++k)
+    if (!in_view[k].empty()) last_in_view = static_cast<int>(k);
+  const TrackJobResult r = RunTrackJob(Job(clip));
+  Print("leaves", r);
+  ASSERT_LT(last_in_view + 20, static_cast<int>(truth.frames.size())) << "the walker must leave for a while";
+  int ended_at = -1;
+  for (const PeopleFrame& f : r.people)
+    if (!f.ended.empty()) ended_at = f.index;
+  std::printf("last in view at frame %d, ended at %d of %zu\n", last_in_view, ended_at, truth.frames.size());
+  EXPECT_GT(ended_at, last_in_view);
+  EXPECT_LE(ended_at, last_in_view + 2 * MultiTrackerOptions().death_frames);
+  EXPECT_TRUE(r.people.back().people.empty());
+  EXPECT_GE(r.mot->mota, 0.8);
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(MultiTracker, OneSeedGivesTheSamePosesWithAnyThreads) {
+  test::TempDir dir;
+  const fs::path clip = Render({Walker("07_01", {true, 0, 0, 0, 0}, 0), Walker("35_10", {true, 0, 0, 90, 0}, 3)},
+                               dir.path() / "crossing", 2, 40);
+  RunTrackJob(Job(clip, 1, dir.path() / "one"));
+  RunTrackJob(Job(clip, 2, dir.path() / "two"));
+  for (const char* file : {"poses.json", "tracked_1.bvh", "tracked_2.bvh"}) {
+    const std::string a = ReadBytes(dir.path() / "one" / file), b = ReadBytes(dir.path() / "two" / file);
+    ASSERT_GT(a.size(), 1000u) << file;
+    EXPECT_TRUE(a == b) << file << " differs between 1 and 2 threads";
+  }
+}
+
+TEST(MultiTracker, BadOptionsAreRefused) {
+  MultiTrackerOptions o;
+  std::string why;
+  EXPECT_TRUE(o.Check(&why));
+  o.birth_window = 2;  // under birth_frames
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_NE(why.find("birth"), std::string::npos);
+  o = MultiTrackerOptions();
+  o.max_people = 0;
+  EXPECT_FALSE(o.Check(&why));
+}
+
+}  // namespace
+}  // namespace jgpm

@@ -1,0 +1,188 @@
+// Several people at once (jgpm track --people all): one Tracker (tracker.h) per person, each
+// with its own particles, prior, refinement and build, all reading the same masks.
+//
+// Interaction. People hide one another and walk through each other's pixels. Each frame the
+// people are updated one after another, nearest the first camera first (the nearest are the
+// least hidden, so their estimates are the surest; a person behind is then updated knowing
+// where they are). A person's masks lose the pixels where the others' latest estimates are
+// drawn (grown by hidden_grow_px), and those pixels are `hidden` for them
+// (observation.h): not foreground to explain, not background to avoid, so a body behind
+// another is not penalised for the mask it cannot see and is not pulled onto the other's
+// pixels. Updating in sequence rather than jointly keeps the cost linear in the number of
+// people (one person's filter per person), where a joint state's particles would have to
+// grow with its dimension; its price is that a person updated first sees the others where
+// they were a frame before.
+//
+// Birth. What no tracked person explains (the masks less everyone's drawings, grown by
+// explained_grow of the image height) is searched for people as a single tracker's start
+// does (person_locator.h: a blob standing on the floor, 1-2.3 m tall, wholly in some view);
+// a place seen in birth_frames of the last birth_window frames, always within a walker's
+// reach of where it was seen before (birth_speed_mm_s), farther than birth_clear_mm from
+// everyone tracked, at least min_birth_share of an image's pixels, and not contradicted by
+// a camera that has the place in view and sees nothing there, starts a new person:
+// the start-up of tracker.h on those frames' unexplained masks, choosing the person
+// nearest that place. A shadow on the floor (no height), a blob in the air or a flicker
+// seen in a frame or two does not start anyone.
+//
+// Confirmation. A new person is reported once confirm_frames of their first birth_window
+// frames are tracked with a mean IoU of confirm_iou or more; one who is not by then was
+// something else (a blob one camera places far away, which no body explains: clutter
+// crossing a webcam's view was started as a person 9 m away and explained at IoU 0.2 by
+// the best body; walkers are explained at 0.4-0.7) and ends unreported.
+//
+// Death. A person lost (tracker.h: explained badly, or out of every view), or not tracked
+// while nobody stands in front of them (half their drawing under others' in some camera),
+// for death_frames frames in a row ends: a single tracker keeps a person it cannot see
+// predicted for up to two seconds, taking them for hidden, but among several people
+// tracked the ones who could hide them are known. Two people within duplicate_mm of each other on the floor for
+// duplicate_frames frames in a row (a second: people crossing share a place for a third of
+// one), or duplicate_same_way_frames walking the same way, are one person followed twice
+// (two bodies do not stand in one place): the one born later ends.
+//
+// Identities are the trackers': each follows its own person by its own dynamics (place,
+// heading, speed, gait phase) and build, and looks again for them only near where those put
+// them.
+//
+// Constants. birth_frames / birth_window: a third of a second at 30 fps, past a mask's
+// flicker (clutter blobs and segmentation noise come and go frame to frame) and short
+// against the seconds a walker stays in view. birth_clear_mm and duplicate_mm: a body is
+// about 400-500 mm across the shoulders; two people closer than that overlap, and a part of
+// a tracked person left over by a slightly wrong estimate lies within 700 mm of its root.
+// min_birth_share 0.1%: a 60 px tall person (the smallest the surveillance rigs show) covers
+// about 600 px of 640x480, half of that, as a share so that it holds at any working size.
+// death_frames: half a second, the time for a tracker to find a person again after a short
+// occlusion (tracker.h keeps a hidden person predicted meanwhile).
+#pragma once
+
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tracker/filter/tracker.h"
+
+namespace jgpm {
+
+struct MultiTrackerOptions {
+  int max_people = 8;
+  int birth_frames = 5;
+  int birth_window = 8;
+  double birth_speed_mm_s = 3000;  // a brisk walk is 1.5-2 m/s; 3 m/s with the locator's error
+  double birth_margin_mm = 400;    // ...plus this, the locator's error on clean masks
+  double birth_clear_mm = 700;
+  double explained_grow = 0.0125;  // share of the image height (6 px at 480)
+  double min_birth_share = 0.001;
+  int confirm_frames = 3;        // a new person is reported once this many of its first
+  double confirm_iou = 0.3;      // birth_window frames explain the masks this well (mean IoU)
+  int death_frames = 15;
+  double duplicate_mm = 400;
+  int duplicate_frames = 30;       // ...or this many when they walk the same way (heading
+  int duplicate_same_way_frames = 10;  // within duplicate_heading_deg)
+  double duplicate_heading_deg = 45;
+  int hidden_grow_px = 1;
+  // A person's tracker restarts only on someone this near where they were last explained
+  // well: half a second's lost frames at a brisk 2 m/s and the locator's error; farther is
+  // someone else's, or a leftover of their pixels (a sliver placed 8 m away was taken).
+  double restart_within_mm = 1500;
+
+  bool Check(std::string* why) const;
+};
+
+// One person in a frame.
+struct PersonFrame {
+  int id = 0;  // 1, 2, ... in order of birth; never reused
+  TrackedFrame frame;
+};
+
+struct PeopleFrame {
+  int index = 0;
+  double time_s = 0;
+  std::vector<PersonFrame> people;  // those alive and confirmed, by id
+  std::vector<int> born;            // ids in their first frame reported
+  std::vector<int> ended;           // ids that ended at this frame (not in `people`)
+  double seconds = 0;               // wall time of the frame's tracking, everyone's
+};
+
+class MultiTracker {
+ public:
+  // InputError for bad options (as Tracker's). `tracker`: every person's options; person i
+  // runs with annealing seed `seed + 1000003 (i - 1)`, so that each has its own random
+  // numbers and the first is a single tracker's.
+  MultiTracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& tracker,
+               const MultiTrackerOptions& options, std::shared_ptr<const PoseTable> table = nullptr);
+  ~MultiTracker();
+
+  const MultiTrackerOptions& options() const { return options_; }
+  const TrackerOptions& tracker_options() const { return tracker_options_; }
+  const BodyModel& body(int id) const;  // a person's body as drawn (alive or not)
+
+  // Looks at the first frames of a source for everyone in view (a place seen in
+  // birth_frames of them, or in most of them when they are fewer): each starts at the
+  // first of them it was seen in. Step must then be given these frames again, in order.
+  void Start(const std::vector<Frame>& frames);
+  // One frame: everyone alive updated, then deaths and births.
+  PeopleFrame Step(const Frame& frame);
+
+ private:
+  struct Person;
+  struct Candidate {
+    Eigen::Vector2d floor_mm;
+    double last_time_s = 0;
+    int first_frame = 0;
+    std::vector<int> seen;                  // frame indices
+    std::vector<Eigen::Vector2d> places;    // where, in those frames
+    std::vector<std::vector<cv::Rect>> boxes;  // and the blobs, per camera (empty: none)
+  };
+  // Whether two candidates are one person: in a frame both were seen in, their places are
+  // within birth_clear_mm, or, seen by different cameras, one's place (a body's middle
+  // above it) falls beside the other's blob (a camera alone places a person along its ray,
+  // and a shadow or a cut-off foot moves that place: two cameras' single sightings of one
+  // person can lie a metre or more apart).
+  bool Same(const Candidate& a, const Candidate& b) const;
+  // The candidates that qualify (seen in `needed` frames), one per person, the most seen
+  // first, born from the frames in `frames` that they were seen in or after.
+  void BearQualified(int needed, const std::vector<Frame>& frames, bool from_first_seen, int next_frame);
+  // Each camera's pixels where person `skip`'s others are drawn (skip -1: everyone's),
+  // grown by `grow` pixels.
+  std::vector<cv::Mat> Drawn(int skip, int grow) const;
+  // The sightings of this frame's unexplained masks feed the candidates; any that qualify
+  // (not in the final batch: Start bears them at its end) are born from the recent
+  // unexplained frames.
+  void Look(const Frame& unexplained, bool final_batch);
+  bool Bear(const Candidate& c, const std::vector<Frame>& frames, int first_frame);
+  bool Clear(const Eigen::Vector2d& floor_mm) const;
+  // Whether a camera that did not see the sighting has it wholly in view and, where a
+  // 1.7 m person standing there would show, under 5% foreground (a blob one camera places
+  // far away, clutter or a shadow, that another camera would see as a person and does not).
+  bool Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks) const;
+  // Whether at least half of the person's drawing is under others' in some camera.
+  bool Behind(const Person& p) const;
+
+  const GaitModel& model_;
+  std::vector<Camera> cameras_;
+  TrackerOptions tracker_options_;
+  MultiTrackerOptions options_;
+  std::shared_ptr<const PoseTable> table_;
+  std::vector<std::unique_ptr<Person>> people_;   // alive, by id
+  std::vector<std::unique_ptr<Person>> ended_;    // kept for body(id)
+  std::vector<Candidate> candidates_;
+  std::deque<Frame> recent_;  // unexplained masks of the last frames (start_frames)
+  int next_id_ = 1;
+  int looked_until_ = -1;     // frames Start has looked at already
+  // (id, later id): frames in a row within duplicate_mm, and within it walking the same way.
+  std::map<std::pair<int, int>, std::pair<int, int>> together_;
+  std::vector<int> ended_now_;
+};
+
+// Tracks every frame of a source: the first start_frames are looked at to start everyone
+// seen, then tracked like the rest. `on_frame` and `stop` as TrackSource's.
+std::vector<PeopleFrame> TrackPeople(FrameSource* source, MultiTracker* tracker,
+                                     const std::function<void(const Frame&, PeopleFrame&)>& on_frame = {},
+                                     const std::function<bool()>& stop = {});
+
+}  // namespace jgpm
