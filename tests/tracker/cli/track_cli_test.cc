@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -228,6 +229,42 @@ TEST(TrackCli, TheSubjectsSkeletonPlacesThePoses) {
                 "bad.asf", "--asf not a skeleton");
 }
 
+// Two walkers crossing, everyone tracked: each frame lists its people with their ids and a
+// one-person frame's fields, a BVH per person, overlays, and the CLEAR MOT line.
+TEST(TrackCli, EveryoneInViewWithPeopleAll) {
+  test::TempDir dir;
+  const fs::path clip = dir.path() / "two";
+  const std::string amc = (test::CmuRoot() / "subjects/07/07_01.amc").string();
+  const Result made = test::RunJgpm("render --amc " + amc + " --amc " + amc + " --walk 0,0,0,0 --walk 0,2000,0,0 --out " +
+                                    clip.string() + " --cameras 2 --max-frames 25 --no-contact-sheet --body-seed 3");
+  ASSERT_EQ(made.status, 0) << made.err;
+  const fs::path out = dir.path() / "out";
+  const Result r = test::RunJgpm("track --model " + Shared().model.string() + " --clip " + clip.string() + " --out " +
+                                 out.string() + " --particles 60 --layers 3 --threads 2 --people all");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::printf("%s", r.out.c_str());
+  EXPECT_NE(r.out.find("CLEAR MOT against the clip's 2 walkers"), std::string::npos) << r.out;
+  const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+  ASSERT_EQ(poses["frames"].size(), 25u);
+  std::set<int> ids;
+  for (const auto& frame : poses["frames"]) {
+    for (const auto& person : frame["people"]) {
+      ids.insert(person["id"].get<int>());
+      EXPECT_TRUE(person.contains("status") && person.contains("joints_mm") && person.contains("cameras"));
+      if (!person["joints_mm"].is_null()) {
+        EXPECT_EQ(person["joints_mm"].size(), poses["joint_names"].size());
+        EXPECT_TRUE(person.contains("root_mm") && person.contains("heading_deg"));
+      }
+    }
+  }
+  EXPECT_EQ(ids, (std::set<int>{1, 2}));
+  EXPECT_EQ(poses["clear_mot"]["true_people"], 2);
+  EXPECT_GE(poses["clear_mot"]["mota"].get<double>(), 0.5);
+  for (const std::string file : {"tracked_1.bvh", "tracked_2.bvh", "overlay_cam0.avi", "overlay_cam1.avi"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  EXPECT_FALSE(fs::exists(out / "tracked.bvh"));
+}
+
 TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
   const Fixture& f = Shared();
   test::TempDir dir;
@@ -249,6 +286,11 @@ TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
   ExpectRefused(Track(f.clip, out, "--person left"), out, "--person left", "--person left");
   ExpectRefused(Track(f.clip, out, "--person 10,nan"), out, "--person 10,nan", "--person 10,nan");
   ExpectRefused(Track(f.clip, out, "--person 5000,10"), out, "outside the first camera", "--person 5000,10");
+  // Everyone, and yet one person or the truth's start; a count of nobody.
+  ExpectRefused(Track(f.clip, out, "--people all --person 10,10"), out, "--people all", "--people all --person");
+  ExpectRefused(Track(f.clip, out, "--people all --init truth"), out, "--init truth", "--people all --init truth");
+  ExpectRefused(Track(f.clip, out, "--people all --max-people 0"), out, "--max-people", "--max-people 0");
+  ExpectRefused(Track(f.clip, out, "--people some"), out, "--people", "--people some");
 
   // An output folder that is in use: refused, left as it was.
   fs::create_directories(dir.path() / "full");
