@@ -289,6 +289,17 @@ void RunBench(BenchArguments a) {
   const std::vector<TrackBenchRow> rows =
       RunTrackBench(clips, clip_folder, a.bench, [&line](const TrackBenchRow& r, int done, int total) {
         line.Finish();
+        if (r.walkers > 0) {
+          std::printf("%-28s %-13s %-17s %d walkers: MOTA %.3f, MOTP %4.0f mm, %4.1f misses, %4.1f false, %3.1f switches, "
+                      "%3.1f fragmentations | paired 14 joints %5.1f mm | %.2f people a frame, %5.1f frames/s (%.1f ms a "
+                      "person)\n",
+                      r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.walkers, r.mota, r.motp_mm, r.misses,
+                      r.false_positives, r.id_switches, r.fragmentations, r.bt14_mm, r.people_per_frame, r.fps,
+                      r.ms_per_person);
+          std::fflush(stdout);
+          line.Update(done, total, "runs");
+          return;
+        }
         std::printf("%-20s %-13s %-15s 14 joints %5.1f mm | 17 joints root-relative %5.1f, search alone %5.1f, "
                     "floor %5.1f | %4.1f%% failed, %4.1f%% swapped, %4.1f%% lost in view (longest %d) | %5.1f frames/s "
                     "(%5.1f with input)\n",

@@ -67,6 +67,37 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
   ++row->seeds;
 }
 
+// A --people all run into a crowd row.
+void AddPeople(TrackBenchRow* row, const TrackJobResult& r) {
+  const MotResult& m = *r.mot;
+  if (row->seeds == 0) row->mota = row->motp_mm = 0;  // measured now
+  row->walkers = m.truth_tracks;
+  row->mota += m.mota;
+  row->motp_mm += m.motp_mm;
+  row->misses += m.misses;
+  row->false_positives += m.false_positives;
+  row->id_switches += m.id_switches;
+  row->fragmentations += m.fragmentations;
+  if (r.matched_bodytrack14) {
+    row->bt14_mm += r.matched_bodytrack14->absolute_mm;
+    row->bt14_root_mm += r.matched_bodytrack14->root_relative_mm;
+    row->bt14_procrustes_mm += r.matched_bodytrack14->procrustes_mm;
+  }
+  long person_frames = 0, evaluations = 0;
+  for (const PeopleFrame& f : r.people) {
+    person_frames += static_cast<long>(f.people.size());
+    for (const PersonFrame& p : f.people) evaluations += p.frame.evaluations;
+  }
+  const int n = static_cast<int>(r.people.size());
+  row->people_per_frame += n ? static_cast<double>(person_frames) / n : 0;
+  row->ms_per_person += person_frames ? 1000 * r.run.tracking_seconds / person_frames : 0;
+  row->fps += r.run.tracking_seconds > 0 ? n / r.run.tracking_seconds : 0;
+  row->fps_with_input += r.loop_seconds > 0 ? n / r.loop_seconds : 0;
+  row->evaluations_per_frame += n ? static_cast<double>(evaluations) / n : 0;
+  row->frames = n;
+  ++row->seeds;
+}
+
 void Average(TrackBenchRow* row) {
   const double k = std::max(1, row->seeds);
   for (double* x : {&row->bt14_mm, &row->bt14_root_mm, &row->bt14_procrustes_mm, &row->g17_mm, &row->g17_root_mm,
@@ -76,6 +107,12 @@ void Average(TrackBenchRow* row) {
   }
   for (double& x : row->per_joint_mm) x /= k;
   for (double& x : row->per_frame_mm) x /= k;
+  if (row->walkers > 0) {
+    for (double* x : {&row->mota, &row->motp_mm, &row->misses, &row->false_positives, &row->id_switches,
+                      &row->fragmentations, &row->people_per_frame, &row->ms_per_person}) {
+      *x /= k;
+    }
+  }
 }
 
 std::string Stem(const std::string& path) { return fs::path(path).stem().string(); }
@@ -204,11 +241,40 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
   if (options.no_latent_prior) methods.push_back({0, "no-latent-prior", StateSpace::kModel, false});
   if (options.joint_space) methods.push_back({0, "joint-space", StateSpace::kJointSpace, true});
   if (options.from_video) methods.push_back({0, "from-video", StateSpace::kModel, true, false, true});
+  std::vector<Method> crowd_methods;
+  for (size_t m = 0; m < models.size(); ++m) crowd_methods.push_back({static_cast<int>(m), "people", StateSpace::kModel, true});
+  if (options.from_video) crowd_methods.push_back({0, "people-from-video", StateSpace::kModel, true, false, true});
   std::vector<TrackBenchRow> rows;
-  const int total = static_cast<int>(clips.size() * methods.size());
+  int total = 0;
+  for (const SuiteClip& clip : clips) total += static_cast<int>(clip.others.empty() ? methods.size() : crowd_methods.size());
   for (const SuiteClip& clip : clips) {
     const fs::path dir = folder / clip.name;
     const ClipGroundTruth truth = ReadGroundTruth(ClipPaths{dir}.GroundTruth());
+    if (!truth.people.empty()) {
+      for (const Method& method : crowd_methods) {
+        TrackBenchRow row;
+        row.clip = clip.name;
+        row.model = Stem(options.models[method.model]);
+        row.method = method.name;
+        row.cameras = static_cast<int>(truth.cameras.size());
+        for (int seed = 1; seed <= options.seeds; ++seed) {
+          TrackJobOptions job;
+          job.model = options.models[method.model];
+          job.source.clip = dir.string();
+          job.source.max_frames = options.max_frames;
+          job.source.clip_foreground = method.from_video;
+          job.overlays = false;
+          job.people = true;
+          job.tracker = options.tracker;
+          job.tracker.annealing.seed = static_cast<uint64_t>(seed);
+          AddPeople(&row, RunTrackJob(job));
+        }
+        Average(&row);
+        rows.push_back(row);
+        if (progress) progress(row, static_cast<int>(rows.size()), total);
+      }
+      continue;
+    }
     const int frames = options.max_frames > 0 ? std::min<int>(options.max_frames, truth.frames.size())
                                               : static_cast<int>(truth.frames.size());
     std::vector<PriorFloors> floors(models.size());
@@ -258,16 +324,19 @@ std::string TrackBenchCsv(const std::vector<TrackBenchRow>& rows) {
       "clip,model,method,cameras,frames,seeds,bt14_mm,bt14_root_mm,bt14_procrustes_mm,g17_mm,g17_root_mm,"
       "g17_procrustes_mm,search_bt14_mm,search_g17_root_mm,floor_bt14_root_mm,floor_g17_root_mm,failure_rate,"
       "swap_rate,lost_rate,fps,fps_with_input,evaluations_per_frame,lost_in_view_rate,longest_lost_in_view,"
-      "triangulated_bt14_mm\n";
-  char line[640];
+      "triangulated_bt14_mm,walkers,mota,motp_mm,misses,false_positives,id_switches,fragmentations,people_per_frame,"
+      "ms_per_person\n";
+  char line[800];
   for (const TrackBenchRow& r : rows) {
     std::snprintf(line, sizeof(line),
-                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f,%.4f,%d,%.2f\n",
+                  "%s,%s,%s,%d,%d,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.4f,%.4f,%.4f,%.2f,%.2f,%.1f,%.4f,%d,"
+                  "%.2f,%d,%.4f,%.2f,%.2f,%.2f,%.2f,%.2f,%.3f,%.2f\n",
                   r.clip.c_str(), r.model.c_str(), r.method.c_str(), r.cameras, r.frames, r.seeds, r.bt14_mm,
                   r.bt14_root_mm, r.bt14_procrustes_mm, r.g17_mm, r.g17_root_mm, r.g17_procrustes_mm,
                   r.search_bt14_mm, r.search_g17_root_mm, r.floor_bt14_root_mm, r.floor_g17_root_mm, r.failure_rate,
                   r.swap_rate, r.lost_rate, r.fps, r.fps_with_input, r.evaluations_per_frame, r.lost_in_view_rate,
-                  r.longest_lost_in_view, r.triangulated_bt14_mm);
+                  r.longest_lost_in_view, r.triangulated_bt14_mm, r.walkers, r.mota, r.motp_mm, r.misses,
+                  r.false_positives, r.id_switches, r.fragmentations, r.people_per_frame, r.ms_per_person);
     csv += line;
   }
   return csv;

@@ -22,6 +22,9 @@
 
 namespace jgpm {
 
+// A crowd clip (ground truth with `people`: datasets_scripts/crowd_suite.txt) is tracked
+// with --people all only ("people", and "people-from-video" with from_video): the
+// one-person methods would follow the first walker alone.
 struct TrackBenchOptions {
   std::vector<std::string> models;  // model files
   bool joint_space = true;          // the classic baseline (on the first model's skeleton)
@@ -56,6 +59,12 @@ struct TrackBenchRow {
   // per frame (NaN where a seed had no estimate).
   std::vector<std::string> joints;
   std::vector<double> per_joint_mm, per_frame_mm;
+  // Several walkers (a crowd clip, method "people" or "people-from-video": --people all):
+  // CLEAR MOT averaged over the seeds (tracker/run/mot_metrics.h), bt14_mm the paired
+  // people's error, fps frames (everyone in them) a second. -1 / 0 for one-walker rows.
+  int walkers = 0;
+  double mota = -1, motp_mm = -1, misses = 0, false_positives = 0, id_switches = 0, fragmentations = 0;
+  double people_per_frame = 0, ms_per_person = 0;
 };
 
 // The model's best poses for the clip's first `frames` true poses (sequence inference on the

@@ -33,6 +33,17 @@ TEST(TrackBench, TablesHoldEveryRowJointAndFrame) {
   EXPECT_EQ(std::count(track.begin(), track.end(), '\n'), 3);
   EXPECT_NE(track.find("\nc1,m,prior,4,3,2,12.35,"), std::string::npos) << track;
   EXPECT_NE(track.find("\nc1,m,joint-space,4,3,2,"), std::string::npos) << track;
+  // A crowd row's CLEAR MOT columns, at the end.
+  TrackBenchRow crowd = a;
+  crowd.method = "people", crowd.walkers = 3, crowd.mota = 0.9125, crowd.motp_mm = 34.5, crowd.id_switches = 0.5;
+  crowd.people_per_frame = 2.875, crowd.ms_per_person = 24.25;
+  const std::string with_crowd = TrackBenchCsv({crowd});
+  EXPECT_NE(with_crowd.find(",walkers,mota,motp_mm,misses,false_positives,id_switches,fragmentations,people_per_frame,"
+                            "ms_per_person\n"),
+            std::string::npos)
+      << with_crowd;
+  EXPECT_NE(with_crowd.find(",3,0.9125,34.50,0.00,0.00,0.50,0.00,2.875,24.25\n"), std::string::npos) << with_crowd;
+  EXPECT_NE(track.find(",0,-1.0000,-1.00,"), std::string::npos) << track;  // one-walker rows: not measured
   EXPECT_EQ(TrackBenchJointsCsv({a}),
             "clip,model,method,joint,mm\nc1,m,prior,lfemur,10.00\nc1,m,prior,rfemur,20.50\n");
   EXPECT_EQ(TrackBenchFramesCsv({a}),
