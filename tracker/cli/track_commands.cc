@@ -158,10 +158,13 @@ void RunTrack(TrackArguments a) {
   a.job.stop = &interrupted;
   std::signal(SIGINT, OnTrackInterrupt);
   std::signal(SIGTERM, OnTrackInterrupt);
-  const TrackJobResult result = RunTrackJob(a.job, [&line, &count](const TrackedFrame& f, int total, int skipped) {
+  const bool people = a.job.people;
+  const TrackJobResult result = RunTrackJob(a.job, [&line, &count, people](const TrackedFrame& f, int total, int skipped) {
     char detail[160];
-    int n = std::snprintf(detail, sizeof(detail), "%-9s ess %.2f  overlap %.2f",
-                          std::string(TrackStatusName(f.status)).c_str(), f.ess, f.MeanIou());
+    // With --people all the frame is a summary: tracked when anyone in it is.
+    int n = people ? std::snprintf(detail, sizeof(detail), "%s", f.status == TrackStatus::kTracked ? "someone tracked" : "nobody tracked")
+                   : std::snprintf(detail, sizeof(detail), "%-9s ess %.2f  overlap %.2f",
+                                   std::string(TrackStatusName(f.status)).c_str(), f.ess, f.MeanIou());
     if (total < 0) std::snprintf(detail + n, sizeof(detail) - n, "  latency %.0f ms  dropped %d", f.latency_ms, skipped);
     line.Update(total < 0 ? ++count : f.index + 1, total, "frames", detail);
   });
