@@ -356,21 +356,14 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
 std::vector<PeopleFrame> TrackPeople(FrameSource* source, MultiTracker* tracker,
                                      const std::function<void(const Frame&, PeopleFrame&)>& on_frame,
                                      const std::function<bool()>& stop) {
-  const auto stopped = [&stop] { return stop && stop(); };
-  std::vector<Frame> first;
-  Frame frame;
-  while (static_cast<int>(first.size()) < tracker->tracker_options().start_frames && !stopped() && source->Next(&frame)) {
-    first.push_back(frame);
-  }
   std::vector<PeopleFrame> tracked;
-  if (first.empty()) return tracked;
-  tracker->Start(first);
-  auto step = [&](const Frame& f) {
-    tracked.push_back(tracker->Step(f));
-    if (on_frame) on_frame(f, tracked.back());
-  };
-  for (const Frame& f : first) step(f);
-  while (!stopped() && source->Next(&frame)) step(frame);
+  RunSource(
+      source, tracker->tracker_options().start_frames, [tracker](const std::vector<Frame>& first) { tracker->Start(first); },
+      [&](const Frame& f) {
+        tracked.push_back(tracker->Step(f));
+        if (on_frame) on_frame(f, tracked.back());
+      },
+      stop);
   return tracked;
 }
 

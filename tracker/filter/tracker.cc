@@ -610,24 +610,29 @@ void Tracker::DrawEstimate(const TrackedFrame& frame, std::vector<cv::Mat>* mask
   }
 }
 
-std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
-                                      const std::function<void(const Frame&, TrackedFrame&)>& on_frame,
-                                      const std::function<bool()>& stop) {
+void RunSource(FrameSource* source, int start_frames, const std::function<void(const std::vector<Frame>&)>& start,
+               const std::function<void(const Frame&)>& step, const std::function<bool()>& stop) {
   const auto stopped = [&stop] { return stop && stop(); };
   std::vector<Frame> first;
   Frame frame;
-  while (static_cast<int>(first.size()) < tracker->options().start_frames && !stopped() && source->Next(&frame)) {
-    first.push_back(frame);
-  }
-  std::vector<TrackedFrame> tracked;
-  if (first.empty()) return tracked;
-  tracker->StartFromFrames(first);
-  auto step = [&](const Frame& f) {
-    tracked.push_back(tracker->Step(f));
-    if (on_frame) on_frame(f, tracked.back());
-  };
+  while (static_cast<int>(first.size()) < start_frames && !stopped() && source->Next(&frame)) first.push_back(frame);
+  if (first.empty()) return;
+  start(first);
   for (const Frame& f : first) step(f);
   while (!stopped() && source->Next(&frame)) step(frame);
+}
+
+std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
+                                      const std::function<void(const Frame&, TrackedFrame&)>& on_frame,
+                                      const std::function<bool()>& stop) {
+  std::vector<TrackedFrame> tracked;
+  RunSource(
+      source, tracker->options().start_frames, [tracker](const std::vector<Frame>& first) { tracker->StartFromFrames(first); },
+      [&](const Frame& f) {
+        tracked.push_back(tracker->Step(f));
+        if (on_frame) on_frame(f, tracked.back());
+      },
+      stop);
   return tracked;
 }
 

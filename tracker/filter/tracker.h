@@ -246,6 +246,11 @@ class Tracker {
   double model_height_mm_ = 0;  // floor to top of head at size 1
 };
 
+// Reads a source's first `start_frames` frames, gives them to `start`, then every frame,
+// those first, to `step`, until the source ends or `stop` (may be empty) says so.
+void RunSource(FrameSource* source, int start_frames, const std::function<void(const std::vector<Frame>&)>& start,
+               const std::function<void(const Frame&)>& step, const std::function<bool()>& stop = {});
+
 // Tracks every frame of a source: the first options.start_frames frames are looked at to
 // start, then tracked like the rest. `on_frame` (may be empty) gets each frame with its
 // estimate as it ends (and may add to it, e.g. the latency); `stop` (may be empty) is asked before each frame is read and ends
