@@ -132,7 +132,8 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
     for (int j = 0; j < m; ++j) {
       const Candidate& c = candidates_[j];
       const double reach = options_.birth_speed_mm_s * (unexplained.time_s - c.last_time_s) + options_.birth_margin_mm;
-      cost(i, j) = std::min((sightings[i].floor_mm - c.floor_mm).norm() / reach, 2.0);
+      // Out of reach costs more than any pairing in reach, so it never displaces one.
+      cost(i, j) = std::min((sightings[i].floor_mm - c.floor_mm).norm() / reach, 1.0 + n + m);
     }
   }
   const std::vector<int> pair = MinCostAssignment(cost, 1.0);
@@ -317,7 +318,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   }
   for (auto it = people_.begin(); it != people_.end();) {
     if (std::find(ending.begin(), ending.end(), (*it)->id) != ending.end()) {
-      if ((*it)->confirmed) ended_now_.push_back((*it)->id);
+      if ((*it)->confirmed) out.ended.push_back((*it)->id);
       for (auto t = together_.begin(); t != together_.end();)
         t = t->first.first == (*it)->id || t->first.second == (*it)->id ? together_.erase(t) : std::next(t);
       ended_.push_back(std::move(*it));
@@ -347,8 +348,6 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     while (static_cast<int>(recent_.size()) > tracker_options_.start_frames) recent_.pop_front();
     Look(recent_.back(), false);
   }
-  out.ended = ended_now_;
-  ended_now_.clear();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }

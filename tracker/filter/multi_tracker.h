@@ -176,7 +176,6 @@ class MultiTracker {
   int looked_until_ = -1;     // frames Start has looked at already
   // (id, later id): frames in a row within duplicate_mm, and within it walking the same way.
   std::map<std::pair<int, int>, std::pair<int, int>> together_;
-  std::vector<int> ended_now_;
 };
 
 // Tracks every frame of a source: the first start_frames are looked at to start everyone
