@@ -322,6 +322,29 @@ class TrackVideoTest(Fixture):
         self.assertIn("--camera", str(caught.exception))
 
 
+    def test_everyone_in_view_with_people_all(self):
+        clip, out = self.dir / "two_walkers", self.dir / "two_tracked"
+        amc = self.data / "subjects" / "07" / "07_01.amc"
+        run_jgpm("render", "--amc", amc, "--amc", amc, "--walk", "0,0,0,0", "--walk", "0,2000,0,0", "--max-frames", 20,
+                 "--body-seed", 3, "--no-contact-sheet", "--out", clip)
+        names = sorted(p.stem for p in clip.glob("cam*.yaml"))
+        videos = [str(clip / f"{n}.avi") for n in names]
+        yamls = [str(clip / f"{n}.yaml") for n in names]
+        arguments = [a for v, c in zip(videos, yamls) for a in ("--video", v, "--camera", c)]
+        run_jgpm("track", "--model", self.models["jgpm"], *arguments, "--seed", 4, "--no-overlay", "--people", "all",
+                 "--out", out)
+        expected = json.loads((out / "poses.json").read_text())["frames"]
+        result = jgpm.track_video(self.models["jgpm"], videos, yamls, seed=4, threads=1, people="all")
+        self.assertEqual(len(result["frames"]), len(expected))
+        for e, f in zip(result["frames"], expected):
+            self.assertEqual([(p["id"], p["status"]) for p in e["people"]], [(p["id"], p["status"]) for p in f["people"]])
+            self.assertEqual((e["born"], e["ended"]), (f["born"], f["ended"]))
+        self.assertEqual({p["id"] for e in result["frames"] for p in e["people"]}, {1, 2})  # the two walkers
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.track_video(self.models["jgpm"], videos, yamls, people="some")
+        self.assertIn("people", str(caught.exception))
+
+
 class TrackerTest(Fixture):
     def test_stepping_a_clips_masks_gives_the_commands_poses(self):
         import cv2

@@ -391,8 +391,10 @@ PyModel Train(const std::string& kind, const std::optional<fs::path>& cycles, co
 // given, working resolution, overlays when `out` is given).
 py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& videos, const std::vector<std::string>& cameras,
                     const std::optional<std::string>& out, const std::vector<std::string>& backgrounds, uint64_t seed,
-                    int threads) {
+                    int threads, const std::string& people) {
+  if (people != "one" && people != "all") ThrowInputError("people='" + people + "'", "expected 'one' or 'all'");
   TrackJobOptions o;
+  o.people = people == "all";
   o.model = model.string();
   o.source.videos = videos;
   o.source.camera_yamls = cameras;
@@ -407,6 +409,16 @@ py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& video
   }
   py::list frames;
   for (const TrackedFrame& f : result.run.frames) frames.append(EstimateDict(f));
+  for (const PeopleFrame& f : result.people) {  // people='all': each frame's people, with their ids
+    py::list everyone;
+    for (const PersonFrame& p : f.people) {
+      py::dict d = EstimateDict(p.frame);
+      d["id"] = p.id;
+      everyone.append(d);
+    }
+    frames.append(py::dict(py::arg("frame") = f.index, py::arg("time_s") = f.time_s, py::arg("people") = everyone,
+                           py::arg("born") = f.born, py::arg("ended") = f.ended));
+  }
   py::list written;
   for (const fs::path& p : result.written) written.append(p.string());
   return py::dict(py::arg("frames") = frames, py::arg("tracking_seconds") = result.run.tracking_seconds,
@@ -560,10 +572,11 @@ PYBIND11_MODULE(jgpm, m) {
       "jgpm.InputError with the command's one-line refusal when the walkers do not determine a camera.");
   m.def("track_video", &TrackVideo, py::arg("model"), py::arg("videos"), py::arg("cameras"),
         py::arg("out") = std::nullopt, py::arg("backgrounds") = std::vector<std::string>(), py::arg("seed") = 1,
-        py::arg("threads") = 0,
+        py::arg("threads") = 0, py::arg("people") = "one",
         "`jgpm track --video ... --camera ...` as a call (one video and one camera YAML per camera; background "
         "learnt unless backgrounds= are given; outputs written to out= when given): a dict of frames (as "
-        "Tracker.step gives them), tracking_seconds, wall_seconds and written files.");
+        "Tracker.step gives them), tracking_seconds, wall_seconds and written files. people='all' (--people all): "
+        "each frame is {frame, time_s, people, born, ended}, each person an estimate with its id.");
   m.def(
       "load_model",
       [](const fs::path& path) {
