@@ -51,6 +51,18 @@ std::string ClipSummary::BriefReport() const {
 
 namespace {
 
+// The clip frames' poses of one walker: the source frame and joints (placed) of every
+// clip frame it is in the scene.
+struct WalkerTrack {
+  double start_s = 0;                     // clip time of its motion's first frame
+  std::vector<int> clip_frames, source_frames;
+  std::vector<Eigen::Matrix3Xd> joints;
+  int Find(int clip_frame) const {        // index into the above, -1 when not in the scene
+    const auto it = std::lower_bound(clip_frames.begin(), clip_frames.end(), clip_frame);
+    return it != clip_frames.end() && *it == clip_frame ? static_cast<int>(it - clip_frames.begin()) : -1;
+  }
+};
+
 // BGR colour of each material; the first walker wears today's, the others other colours
 // so that a viewer tells them apart.
 cv::Vec3f MaterialColour(ClipMaterial material, int walker) {
@@ -164,6 +176,55 @@ std::vector<std::string> JointNames(const Skeleton& skeleton) {
   return names;
 }
 
+// The walker's poses in the clip's `frames` frames at `fps`; `first` is the first walker
+// (nullptr for it), whose middle frame the delay counts from. InputError for a placed first
+// walker with a delay.
+WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const ClipWalker* first) {
+  const Motion& motion = walker.motion;
+  const ClipPlacement& place = walker.placement;
+  const double source_fps = motion.frames_per_second;
+  const auto middle_s = [](const Motion& m) { return 0.5 * (m.NumFrames() - 1) / m.frames_per_second; };
+  WalkerTrack track;
+  if (first == nullptr && place.placed && place.delay_s != 0)
+    ThrowInputError(walker.source.amc, "the first walker's delay must be 0: the clip starts with its trial");
+  if (first != nullptr && place.placed) track.start_s = middle_s(first->motion) + place.delay_s - middle_s(motion);
+  const Kinematics kinematics(walker.skeleton);
+  // Placed: the rotation about the vertical and the shift that take the middle frame's root
+  // to `at`, heading `heading_deg`.
+  Eigen::Matrix2d turn = Eigen::Matrix2d::Identity();
+  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
+  if (place.placed) {
+    const auto root = [&](int f) {
+      const Eigen::Matrix3Xd j = kinematics.Compute(motion.Frame(f));
+      return Eigen::Vector2d(j(0, 0), j(2, 0));
+    };
+    const Eigen::Vector2d walk = root(motion.NumFrames() - 1) - root(0);
+    const double along = walk.norm() > 300 ? std::atan2(walk.y(), walk.x()) : 0;
+    const double angle = place.heading_deg * std::numbers::pi / 180 - along;
+    turn << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    from = root((motion.NumFrames() - 1) / 2);
+    to = Eigen::Vector2d(place.at_x_mm, place.at_z_mm);
+  }
+  Eigen::Matrix3Xd joints;
+  for (int k = 0; k < frames; ++k) {
+    // Clip frame k shows the source frame nearest to its time.
+    const long source = std::lround(k * (source_fps / fps) - track.start_s * source_fps);
+    if (source < 0 || source >= motion.NumFrames()) continue;
+    kinematics.Compute(motion.Frame(static_cast<int>(source)), &joints);
+    if (place.placed) {
+      for (int b = 0; b < joints.cols(); ++b) {
+        const Eigen::Vector2d p = turn * (Eigen::Vector2d(joints(0, b), joints(2, b)) - from) + to;
+        joints(0, b) = p.x();
+        joints(2, b) = p.y();
+      }
+    }
+    track.clip_frames.push_back(k);
+    track.source_frames.push_back(static_cast<int>(source));
+    track.joints.push_back(joints);
+  }
+  return track;
+}
+
 // The ground truth of the clip's frames (joints, times, drops) and what made them: the
 // top level is the first walker's; `people` every walker's when there are several.
 ClipGroundTruth GroundTruth(const std::vector<ClipWalker>& walkers, const std::vector<WalkerTrack>& tracks,
@@ -247,57 +308,6 @@ ClipBodyOptions WalkerBody(const ClipBodyOptions& first, int index) {
   ClipBodyOptions body = first;
   body.body_seed += static_cast<uint64_t>(index);
   return body;
-}
-
-int WalkerTrack::Find(int clip_frame) const {
-  const auto it = std::lower_bound(clip_frames.begin(), clip_frames.end(), clip_frame);
-  return it != clip_frames.end() && *it == clip_frame ? static_cast<int>(it - clip_frames.begin()) : -1;
-}
-
-WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const ClipWalker* first) {
-  const Motion& motion = walker.motion;
-  const ClipPlacement& place = walker.placement;
-  const double source_fps = motion.frames_per_second;
-  const auto middle_s = [](const Motion& m) { return 0.5 * (m.NumFrames() - 1) / m.frames_per_second; };
-  WalkerTrack track;
-  if (first == nullptr && place.placed && place.delay_s != 0)
-    ThrowInputError(walker.source.amc, "the first walker's delay must be 0: the clip starts with its trial");
-  if (first != nullptr && place.placed) track.start_s = middle_s(first->motion) + place.delay_s - middle_s(motion);
-  const Kinematics kinematics(walker.skeleton);
-  // Placed: the rotation about the vertical and the shift that take the middle frame's root
-  // to `at`, heading `heading_deg`.
-  Eigen::Matrix2d turn = Eigen::Matrix2d::Identity();
-  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
-  if (place.placed) {
-    const auto root = [&](int f) {
-      const Eigen::Matrix3Xd j = kinematics.Compute(motion.Frame(f));
-      return Eigen::Vector2d(j(0, 0), j(2, 0));
-    };
-    const Eigen::Vector2d walk = root(motion.NumFrames() - 1) - root(0);
-    const double along = walk.norm() > 300 ? std::atan2(walk.y(), walk.x()) : 0;
-    const double angle = place.heading_deg * std::numbers::pi / 180 - along;
-    turn << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
-    from = root((motion.NumFrames() - 1) / 2);
-    to = Eigen::Vector2d(place.at_x_mm, place.at_z_mm);
-  }
-  Eigen::Matrix3Xd joints;
-  for (int k = 0; k < frames; ++k) {
-    // Clip frame k shows the source frame nearest to its time.
-    const long source = std::lround(k * (source_fps / fps) - track.start_s * source_fps);
-    if (source < 0 || source >= motion.NumFrames()) continue;
-    kinematics.Compute(motion.Frame(static_cast<int>(source)), &joints);
-    if (place.placed) {
-      for (int b = 0; b < joints.cols(); ++b) {
-        const Eigen::Vector2d p = turn * (Eigen::Vector2d(joints(0, b), joints(2, b)) - from) + to;
-        joints(0, b) = p.x();
-        joints(2, b) = p.y();
-      }
-    }
-    track.clip_frames.push_back(k);
-    track.source_frames.push_back(static_cast<int>(source));
-    track.joints.push_back(joints);
-  }
-  return track;
 }
 
 ClipSummary RenderClip(const Skeleton& skeleton, const Motion& motion, const ClipSource& source,

@@ -76,18 +76,6 @@ struct ClipWalker {
 // first keeps the body a one-walker clip would have.
 ClipBodyOptions WalkerBody(const ClipBodyOptions& first, int index);
 
-// The clip frames' poses of one walker: the source frame and joints (placed) of every
-// clip frame it is in the scene.
-struct WalkerTrack {
-  double start_s = 0;                     // clip time of its motion's first frame
-  std::vector<int> clip_frames, source_frames;
-  std::vector<Eigen::Matrix3Xd> joints;
-  int Find(int clip_frame) const;         // index into the above, -1 when not in the scene
-};
-// `frames` clip frames at `fps`; `first` is the first walker's (nullptr for it), whose
-// middle frame the delay counts from. InputError for a placed first walker with a delay.
-WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const ClipWalker* first);
-
 // Renders the clip into `out_dir`, which must not exist or be empty: it is written as
 // `<out_dir>.partial` and renamed when complete, so a failure leaves nothing half-made. An
 // existing `<out_dir>.partial` (another render writing there, or one that was killed) is

@@ -261,26 +261,39 @@ TrackedMotion MakeTrackedMotion(const TrackRun& run, const GaitModel& model) {
   return t;
 }
 
+namespace {
+
+// The image to draw on: a copy, or grey when there is none.
+cv::Mat Canvas(const cv::Mat& image, const Camera& camera) {
+  return image.empty() ? cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(60, 60, 60)) : image.clone();
+}
+
+// The outline of the capsules' silhouette in `colour`.
+void DrawOutline(const Camera& camera, const std::vector<Capsule>& capsules, const cv::Scalar& colour, cv::Mat* out) {
+  BitMask mask(camera.width, camera.height);
+  BitSilhouetteRenderer(camera).Draw(capsules, &mask);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask.ToMat(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  cv::drawContours(*out, contours, -1, colour, 1, cv::LINE_AA);
+}
+
+// Text in `colour` over a black edge, readable on any image.
+void Label(const std::string& text, cv::Point at, double scale, const cv::Scalar& colour, cv::Mat* out) {
+  cv::putText(*out, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+  cv::putText(*out, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
 cv::Mat OverlayFrame(const cv::Mat& image, const Camera& camera, const TrackedFrame& frame,
                      const std::vector<Capsule>& capsules, const Skeleton& skeleton) {
-  cv::Mat out;
-  if (image.empty()) {
-    out = cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(60, 60, 60));
-  } else {
-    out = image.clone();
-  }
+  cv::Mat out = Canvas(image, camera);
   if (frame.state.size()) {
-    BitMask mask(camera.width, camera.height);
-    BitSilhouetteRenderer(camera).Draw(capsules, &mask);
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(mask.ToMat(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-    cv::drawContours(out, contours, -1, cv::Scalar(0, 255, 255), 1, cv::LINE_AA);
+    DrawOutline(camera, capsules, PersonColour(0), &out);
     DrawSkeleton(skeleton, camera, frame.joints_mm, &out);
   }
-  char label[96];
-  std::snprintf(label, sizeof(label), "%d %s", frame.index, std::string(TrackStatusName(frame.status)).c_str());
-  cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-  cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  Label(std::to_string(frame.index) + " " + std::string(TrackStatusName(frame.status)), {4, 14}, 0.4,
+        cv::Scalar(255, 255, 255), &out);
   return out;
 }
 
@@ -292,17 +305,13 @@ cv::Scalar PersonColour(int id) {
 
 cv::Mat OverlayPeopleFrame(const cv::Mat& image, const Camera& camera, int index,
                            const std::vector<OverlayPerson>& people, const Skeleton& skeleton) {
-  cv::Mat out = image.empty() ? cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(60, 60, 60)) : image.clone();
+  cv::Mat out = Canvas(image, camera);
   int tracked = 0;
   for (const OverlayPerson& p : people) {
     if (p.frame.state.size() == 0 || p.frame.status == TrackStatus::kLost) continue;
     tracked += p.frame.status == TrackStatus::kTracked;
-    BitMask mask(camera.width, camera.height);
-    BitSilhouetteRenderer(camera).Draw(p.capsules, &mask);
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(mask.ToMat(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
     const cv::Scalar colour = PersonColour(p.id);
-    cv::drawContours(out, contours, -1, colour, 1, cv::LINE_AA);
+    DrawOutline(camera, p.capsules, colour, &out);
     DrawSkeleton(skeleton, camera, p.frame.joints_mm, &out);
     // The id over the head (the highest bone end), when it is in front of the camera.
     int top = 0;
@@ -310,16 +319,12 @@ cv::Mat OverlayPeopleFrame(const cv::Mat& image, const Camera& camera, int index
       if (p.frame.joints_mm(1, j) > p.frame.joints_mm(1, top)) top = j;
     Eigen::Vector2d at;
     if (camera.Project(p.frame.joints_mm.col(top) + Eigen::Vector3d(0, 150, 0), &at)) {
-      const std::string id = std::to_string(p.id) + (p.frame.status == TrackStatus::kPredicted ? "?" : "");
-      const cv::Point where(static_cast<int>(at.x()) - 4, static_cast<int>(at.y()));
-      cv::putText(out, id, where, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-      cv::putText(out, id, where, cv::FONT_HERSHEY_SIMPLEX, 0.5, colour, 1, cv::LINE_AA);
+      Label(std::to_string(p.id) + (p.frame.status == TrackStatus::kPredicted ? "?" : ""),
+            {static_cast<int>(at.x()) - 4, static_cast<int>(at.y())}, 0.5, colour, &out);
     }
   }
-  char label[96];
-  std::snprintf(label, sizeof(label), "%d  %d tracked", index, tracked);
-  cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-  cv::putText(out, label, {4, 14}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  Label(std::to_string(index) + "  " + std::to_string(tracked) + " tracked", {4, 14}, 0.4, cv::Scalar(255, 255, 255),
+        &out);
   return out;
 }
 
