@@ -162,7 +162,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
 Tracker::~Tracker() = default;
 
 bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer,
-                    std::vector<cv::Rect>* first_boxes) const {
+                    std::vector<cv::Rect>* boxes, bool at_last) const {
   std::vector<std::vector<PersonSighting>> people;
   std::vector<double> times;
   for (const Frame& f : frames) {
@@ -205,7 +205,12 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
     if (!chosen.found) return false;
     sightings = follow(first, chosen);
   }
-  if (first_boxes) *first_boxes = sightings[first].boxes;
+  if (boxes) {
+    size_t last = first;
+    for (size_t i = first; at_last && i < sightings.size(); ++i)
+      if (sightings[i].found) last = i;
+    *boxes = sightings[last].boxes;
+  }
   // Where the person was at the first frame: a straight walk fitted through the places
   // found (least squares in time), so a first frame where nobody was found still starts
   // in the right place.
@@ -227,7 +232,7 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   const double det = n * stt - st * st;
   const Eigen::Vector2d start = det > 1e-9 ? Eigen::Vector2d((stt * sp - st * stp) / det) : Eigen::Vector2d(sp / n);
   const Eigen::Vector2d velocity = det > 1e-9 ? Eigen::Vector2d((n * stp - st * sp) / det) : Eigen::Vector2d::Zero();
-  guess->floor_mm = start;
+  guess->floor_mm = at_last ? Eigen::Vector2d(start + velocity * times.back()) : start;
   guess->floor_std_mm = feet ? 120 : 400;
   if (options_.known_size) {
     guess->size = 1, guess->size_std = 0;
@@ -267,11 +272,11 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   last_good_time_s_ = -1e9;  // nothing to hold to until a good frame
 }
 
-bool Tracker::StartFromFrames(const std::vector<Frame>& frames) {
+bool Tracker::StartFromFrames(const std::vector<Frame>& frames, bool at_last) {
   InitialGuess guess;
   std::vector<cv::Rect> boxes;
-  if (!Guess(frames, &guess, next_choice_, &boxes)) return false;
-  StartAt(guess, frames.front().index);
+  if (!Guess(frames, &guess, next_choice_, &boxes, at_last)) return false;
+  StartAt(guess, at_last ? frames.back().index : frames.front().index);
   start_boxes_ = boxes;  // where to look at the start: the person's first blobs
   return true;
 }

@@ -185,7 +185,10 @@ class Tracker {
   // when found. False when nobody is seen in any of them.
   // The person is chosen as options().person says at the first start, and nearest where
   // they were last explained well at a restart.
-  bool StartFromFrames(const std::vector<Frame>& frames);
+  // `at_last`: the frames are past (a person born from the last frames, tracked from the
+  // next one), so the start is where the walk fitted through them is at the last frame, not
+  // the first (at 10 frames/s a walker born from 8 frames has gone a metre since the first).
+  bool StartFromFrames(const std::vector<Frame>& frames, bool at_last = false);
   // One frame.
   TrackedFrame Step(const Frame& frame);
   // An estimate's silhouette (as Step drew it to score it) set in each camera's CV_8UC1
@@ -198,10 +201,11 @@ class Tracker {
   // The guess the masks of a few frames give (floor place, height -> size, travel ->
   // heading); found false when nobody is seen.
   // `prefer` chooses the person in the first frame (kStrongest: see TrackerOptions::person);
-  // in the others, the one nearest where they were last found. `first_boxes` (may be
-  // null) gets their boxes in the first frame that saw them.
+  // in the others, the one nearest where they were last found. `boxes` (may be null) gets
+  // their boxes in the first frame that saw them. `at_last`: the place is the fitted walk's
+  // at the last frame, and `boxes` those of the last frame that saw them.
   bool Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer = {},
-             std::vector<cv::Rect>* first_boxes = nullptr) const;
+             std::vector<cv::Rect>* boxes = nullptr, bool at_last = false) const;
 
  private:
   std::vector<cv::Rect> Regions(const std::vector<Frame>* frames) const;

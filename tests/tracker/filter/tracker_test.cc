@@ -502,6 +502,36 @@ TEST(Tracker, GuessReadsThePlaceHeadingAndSpeedOfTheWalk) {
   EXPECT_LT(guess.heading_std_rad, std::numbers::pi);  // a heading was read, not "any"
 }
 
+// A start from frames already past (a person born while others are tracked) is where the
+// walker is at the last of them, not where they were at the first: half a second on, the
+// walker of the clip has gone over half a metre.
+TEST(Tracker, AStartFromPastFramesIsWhereTheWalkerIsAtTheLast) {
+  const Fixture& f = Shared();
+  const ClipGroundTruth& truth = f.truth;
+  const Tracker tracker(*f.loaded, truth.cameras, TrackerOptions{});
+  std::vector<Frame> frames;
+  for (int k = 0; k < 15; ++k) frames.push_back(ClipFrameAt(truth, f.clip, k));
+  InitialGuess first, last;
+  std::vector<cv::Rect> first_boxes, last_boxes;
+  ASSERT_TRUE(tracker.Guess(frames, &first, {}, &first_boxes));
+  ASSERT_TRUE(tracker.Guess(frames, &last, {}, &last_boxes, true));
+  const Eigen::Vector3d a = truth.frames[0].joints_mm.col(0), b = truth.frames[14].joints_mm.col(0);
+  const Eigen::Vector2d at_first(a.x(), a.z()), at_last(b.x(), b.z());
+  std::printf("the walk: %.0f mm; the start at the last frame %.0f mm from the walker there (at the first: %.0f)\n",
+              (at_last - at_first).norm(), (last.floor_mm - at_last).norm(), (first.floor_mm - at_last).norm());
+  ASSERT_GT((at_last - at_first).norm(), 500);
+  EXPECT_LT((last.floor_mm - at_last).norm(), 300);  // the locator's error
+  EXPECT_LT((first.floor_mm - at_first).norm(), 300);
+  // The boxes to look in at the start are the last frame's: each camera's holds the
+  // walker's root as drawn there.
+  ASSERT_EQ(last_boxes.size(), truth.cameras.size());
+  for (size_t c = 0; c < truth.cameras.size(); ++c) {
+    Eigen::Vector2d root;
+    ASSERT_TRUE(truth.cameras[c].Project(b, &root));
+    EXPECT_TRUE(last_boxes[c].contains(cv::Point(static_cast<int>(root.x()), static_cast<int>(root.y())))) << c;
+  }
+}
+
 // The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).
 TEST(Tracker, TheSeedReachesTheRefinement) {
   const Fixture& f = Shared();
