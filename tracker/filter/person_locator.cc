@@ -112,6 +112,69 @@ BlobEnds FindBlobEnds(const cv::Mat& labels, int label, const cv::Rect& box) {
   return ends;
 }
 
+// People side by side merged into one blob (walking together, passing one another) split
+// at their heads. A blob's top profile (each column's highest pixel) has one peak per
+// head near the blob's top; one person's profile falls from the head to the shoulders
+// (0.15-0.2 of their height) and has no second peak there (a hand is low, the shoulders
+// are below the head). So the blob is split at the column where the profile dips deepest
+// between a peak on each side, when both peaks are within kPeak of the blob's height of
+// its top (two adults' heights differ by up to a tenth), the dip falls at least kDip below
+// the lower peak (the neck and shoulders between two heads), and each side is at least
+// kSide as wide as the blob is tall (a person's shoulders are a quarter of their height)
+// with at least a fifth of its pixels; each side is split again the same way. A blob cut
+// by the image's top edge has no heads to go by (its top row is a body's cut, arms and
+// trunk apart) and is not split. Returns the parts' boxes (the blob's own when it is one
+// person).
+constexpr double kPeak = 0.12, kDip = 0.12, kSide = 0.15;
+std::vector<cv::Rect> SplitAtHeads(const cv::Mat& labels, int label, const cv::Rect& box, int depth = 0) {
+  const int h = box.height, w = box.width;
+  const int side = static_cast<int>(std::ceil(kSide * h));
+  if (depth >= 3 || w < 2 * side || box.y <= 0) return {box};
+  std::vector<int> top(w, box.y + h), count(w, 0);
+  int total = 0;
+  for (int v = box.y; v < box.y + h; ++v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = 0; u < w; ++u) {
+      if (row[box.x + u] != label) continue;
+      top[u] = std::min(top[u], v);
+      ++count[u], ++total;
+    }
+  }
+  std::vector<int> left_peak(w), right_peak(w), left_count(w + 1, 0);
+  for (int u = 0; u < w; ++u) {
+    left_peak[u] = std::min(top[u], u > 0 ? left_peak[u - 1] : box.y + h);
+    left_count[u + 1] = left_count[u] + count[u];
+  }
+  for (int u = w - 1; u >= 0; --u) right_peak[u] = std::min(top[u], u + 1 < w ? right_peak[u + 1] : box.y + h);
+  const double near_top = box.y + kPeak * h;
+  int split = -1;
+  double deepest = 0;
+  for (int u = side; u + side <= w; ++u) {
+    const int l = left_peak[u - 1], r = right_peak[u];
+    if (l > near_top || r > near_top) continue;
+    const double dip = top[u] - std::max(l, r);
+    const int left_px = left_count[u];
+    if (dip < kDip * h || 5 * left_px < total || 5 * (total - left_px) < total) continue;
+    if (dip > deepest) deepest = dip, split = u;
+  }
+  if (split < 0) return {box};
+  std::vector<cv::Rect> parts;
+  for (const auto& [from, to] : {std::pair{0, split}, std::pair{split, w}}) {
+    int y0 = box.y + h, y1 = box.y - 1;
+    for (int v = box.y; v < box.y + h; ++v) {
+      const int* row = labels.ptr<int>(v);
+      for (int u = from; u < to; ++u)
+        if (row[box.x + u] == label) {
+          y0 = std::min(y0, v), y1 = std::max(y1, v);
+          break;
+        }
+    }
+    for (const cv::Rect& r : SplitAtHeads(labels, label, cv::Rect(box.x + from, y0, to - from, y1 - y0 + 1), depth + 1))
+      parts.push_back(r);
+  }
+  return parts;
+}
+
 }  // namespace
 
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
@@ -135,61 +198,64 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     std::vector<cv::Rect> boxes;
     const int n = BodyBlobs(masks[c], &labels, &areas, &boxes);
     for (int l = 1; l < n; ++l) {
-      const int area = areas[l];
-      if (area < min_blob_px) continue;
-      const cv::Rect box = boxes[l];
-      const BlobEnds ends = FindBlobEnds(labels, l, box);
-      const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
-      const bool head_cut = box.y <= 0;
-      // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
-      // back), whose top is not a head.
-      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
-      Eigen::Matrix2Xd pixels(2, 2);
-      pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
-      const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
-      const Eigen::Vector3d r = rays.col(1);
-      const Eigen::Vector2d horizontal(r.x(), r.z());
-      if (horizontal.squaredNorm() < 1e-12) continue;
-      Eigen::Vector3d floor;
-      double height = 0;  // unknown unless both ends are in view
-      if (!feet_cut) {
-        if (!(rays(1, 0) < -1e-6)) continue;  // the foot ray must go down to the floor
-        floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
-        if (!head_cut) {
-          // Height: the top ray's point nearest the vertical line through the floor point.
-          const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
-          const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
-          height = eye.y() + along * r.y();
-          // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
-          if (!(along > 0 && height > 1000 && height < 2300)) continue;
+      if (areas[l] < min_blob_px) continue;
+      const std::vector<cv::Rect> parts = SplitAtHeads(labels, l, boxes[l]);
+      for (const cv::Rect& box : parts) {
+        const int area = parts.size() == 1 ? areas[l] : cv::countNonZero(labels(box) == l);
+        if (area < min_blob_px) continue;
+        const BlobEnds ends = FindBlobEnds(labels, l, box);
+        const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
+        const bool head_cut = box.y <= 0;
+        // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
+        // back), whose top is not a head.
+        const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
+        Eigen::Matrix2Xd pixels(2, 2);
+        pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
+        const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
+        const Eigen::Vector3d r = rays.col(1);
+        const Eigen::Vector2d horizontal(r.x(), r.z());
+        if (horizontal.squaredNorm() < 1e-12) continue;
+        Eigen::Vector3d floor;
+        double height = 0;  // unknown unless both ends are in view
+        if (!feet_cut) {
+          if (!(rays(1, 0) < -1e-6)) continue;  // the foot ray must go down to the floor
+          floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
+          if (!head_cut) {
+            // Height: the top ray's point nearest the vertical line through the floor point.
+            const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
+            const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
+            height = eye.y() + along * r.y();
+            // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
+            if (!(along > 0 && height > 1000 && height < 2300)) continue;
+          }
+        } else {
+          // The feet below the image (a camera near the walk): the person stands where the
+          // top ray is an adult's height above the floor, but no farther than where the
+          // image's bottom edge meets the floor (the feet are below that edge, so nearer).
+          // From a camera at head height the first alone can put a person tens of metres
+          // away.
+          if (head_cut) continue;
+          Eigen::Matrix2Xd edge(2, 1);
+          edge << ends.foot_u, masks[c].rows - 0.5;
+          const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);
+          const Eigen::Vector2d horizontal_down(down.x(), down.z());
+          double reach = std::numeric_limits<double>::infinity();  // horizontal distance
+          if (down.y() < -1e-6) reach = horizontal_down.norm() * (-eye.y() / down.y());
+          const double t = std::abs(r.y()) > 1e-6 ? (kAdultHeightMm - eye.y()) / r.y() : -1;
+          double distance = t > 0 ? horizontal.norm() * t : reach;
+          distance = std::min(distance, reach);
+          if (!std::isfinite(distance)) continue;
+          // What it shows there must be a standing person's upper body: from the head (at
+          // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not).
+          const double top = eye.y() + r.y() * distance / horizontal.norm();
+          const double bottom = eye.y() + down.y() * distance / horizontal_down.norm();
+          if (!(top < 2300 && top - bottom >= 800)) continue;
+          const Eigen::Vector2d along = horizontal.normalized() * distance;
+          floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
         }
-      } else {
-        // The feet below the image (a camera near the walk): the person stands where the
-        // top ray is an adult's height above the floor, but no farther than where the
-        // image's bottom edge meets the floor (the feet are below that edge, so nearer).
-        // From a camera at head height the first alone can put a person tens of metres
-        // away.
-        if (head_cut) continue;
-        Eigen::Matrix2Xd edge(2, 1);
-        edge << ends.foot_u, masks[c].rows - 0.5;
-        const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);
-        const Eigen::Vector2d horizontal_down(down.x(), down.z());
-        double reach = std::numeric_limits<double>::infinity();  // horizontal distance
-        if (down.y() < -1e-6) reach = horizontal_down.norm() * (-eye.y() / down.y());
-        const double t = std::abs(r.y()) > 1e-6 ? (kAdultHeightMm - eye.y()) / r.y() : -1;
-        double distance = t > 0 ? horizontal.norm() * t : reach;
-        distance = std::min(distance, reach);
-        if (!std::isfinite(distance)) continue;
-        // What it shows there must be a standing person's upper body: from the head (at
-        // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not).
-        const double top = eye.y() + r.y() * distance / horizontal.norm();
-        const double bottom = eye.y() + down.y() * distance / horizontal_down.norm();
-        if (!(top < 2300 && top - bottom >= 800)) continue;
-        const Eigen::Vector2d along = horizontal.normalized() * distance;
-        floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
+        candidates[c].push_back(
+            {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut});
       }
-      candidates[c].push_back(
-          {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut});
     }
   }
   // A blob whose feet are seen is better evidence than a guess from a head: when any

@@ -10,7 +10,8 @@
 // leg or a back, whose top is not a head: its height is unknown, and a person seen only so
 // is not `whole` (on a phone's portrait video an arm alone was placed as an adult 4 m
 // away; the tracker starts only on people wholly in some view, tracker.h). Blobs one above the other with a small gap (an occluder across the body)
-// are one person.
+// are one person; one blob with two heads side by side at its top (people walking
+// together) is two, split between the heads (person_locator.cc: SplitAtHeads).
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
 // clutter in the air is) are passed over; with several cameras the place that most cameras'
 // blobs agree on (within 1 m) is taken, and the answer is the median of those blobs.
