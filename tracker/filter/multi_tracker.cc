@@ -25,8 +25,9 @@ bool MultiTrackerOptions::Check(std::string* why) const {
     return fail("birth and duplicate distances: expected non-negative numbers (a positive speed)");
   if (!(explained_grow >= 0 && explained_grow < 0.5 && min_birth_share >= 0 && min_birth_share < 1))
     return fail("explained grow and min birth share: expected shares of the image");
-  if (death_frames < 1 || confirm_frames < 1 || confirm_frames > birth_window || !(confirm_iou >= 0 && confirm_iou <= 1) ||
-      duplicate_frames < 1 || duplicate_same_way_frames < 1 || hidden_grow_px < 0) return fail("frame counts: expected positive");
+  if (confirm_frames < 1 || confirm_frames > birth_window || !(confirm_iou >= 0 && confirm_iou <= 1) || hidden_grow_px < 0)
+    return fail("frame counts: expected positive");
+  if (!(death_s > 0 && duplicate_s > 0 && duplicate_same_way_s > 0)) return fail("death and duplicate times: expected positive");
   return true;
 }
 
@@ -37,8 +38,8 @@ struct MultiTracker::Person {
   bool has_estimate = false;
   TrackedFrame last;
   std::vector<cv::Mat> drawn;  // the last estimate in each camera (empty: not drawn)
-  int lost_run = 0;
-  int unseen_run = 0;  // frames not tracked (predicted or lost) with nobody in front
+  double lost_s = 0;    // time in a row lost
+  double unseen_s = 0;  // and not tracked (predicted or lost) with nobody in front
   int stepped = 0;     // frames stepped
   int good = 0;        // of them, tracked at confirm_iou or more
   bool confirmed = false;
@@ -107,6 +108,15 @@ bool MultiTracker::Behind(const Person& p) const {
   return false;
 }
 
+bool MultiTracker::PersonShaped(const PersonSighting& s) const {
+  if (s.height_mm <= 0) return false;  // feet or head unseen
+  for (size_t c = 0; c < s.boxes.size() && c < s.areas.size(); ++c) {
+    const double tall = s.boxes[c].height;
+    if (tall > 0 && s.areas[c] >= options_.shaped_area * tall * tall) return true;
+  }
+  return false;
+}
+
 bool MultiTracker::Clear(const Eigen::Vector2d& floor_mm) const {
   for (const auto& p : people_) {
     if (!p->has_estimate || p->last.status == TrackStatus::kLost || p->last.joints_mm.cols() == 0) continue;
@@ -122,7 +132,8 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
     min_px = std::max(min_px, static_cast<int>(std::lround(options_.min_birth_share * c.width * c.height)));
   std::vector<PersonSighting> sightings;
   for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px)) {
-    if (s.found && s.whole && Clear(s.floor_mm) && !Contradicted(s, unexplained.masks)) sightings.push_back(s);
+    if (s.found && s.whole && (Clear(s.floor_mm) || PersonShaped(s)) && !Contradicted(s, unexplained.masks))
+      sightings.push_back(s);
   }
   // Each sighting continues the candidate it can be (within a walker's reach of where that
   // was last seen), at least total distance; the others are new candidates.
@@ -145,9 +156,10 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
       c.seen.push_back(unexplained.index);
       c.places.push_back(sightings[i].floor_mm);
       c.boxes.push_back(sightings[i].boxes);
+      c.shaped = PersonShaped(sightings[i]);
     } else {
       candidates_.push_back({sightings[i].floor_mm, unexplained.time_s, unexplained.index, {unexplained.index},
-                             {sightings[i].floor_mm}, {sightings[i].boxes}});
+                             {sightings[i].floor_mm}, {sightings[i].boxes}, PersonShaped(sightings[i])});
     }
   }
   // Forget sightings older than the window; a candidate seen nowhere in it is gone.
@@ -191,6 +203,9 @@ bool MultiTracker::Same(const Candidate& a, const Candidate& b) const {
   for (size_t i = 0; i < a.seen.size(); ++i) {
     for (size_t j = 0; j < b.seen.size(); ++j) {
       if (a.seen[i] != b.seen[j]) continue;
+      // Each camera's blob (or a merged blob's part, split at its heads) is one sighting's:
+      // blobs of one camera in one frame are two people, however near.
+      if (!apart(a.boxes[i], b.boxes[j])) continue;
       if ((a.places[i] - b.places[j]).norm() < options_.birth_clear_mm) return true;
       if (apart(a.boxes[i], b.boxes[j]) && (inside(a.places[i], b.boxes[j]) || inside(b.places[j], a.boxes[i])))
         return true;
@@ -204,7 +219,7 @@ void MultiTracker::BearQualified(int needed, const std::vector<Frame>& frames, b
                    [](const Candidate& a, const Candidate& b) { return a.seen.size() > b.seen.size(); });
   std::vector<Candidate> left, chosen;
   for (Candidate& c : candidates_) {
-    const bool ready = static_cast<int>(c.seen.size()) >= std::max(1, needed) && Clear(c.floor_mm);
+    const bool ready = static_cast<int>(c.seen.size()) >= std::max(1, needed) && (c.shaped || Clear(c.floor_mm));
     if (!ready) {
       left.push_back(std::move(c));
       continue;
@@ -215,13 +230,13 @@ void MultiTracker::BearQualified(int needed, const std::vector<Frame>& frames, b
     std::vector<Frame> from;
     for (const Frame& f : frames)
       if (f.index >= c.seen.front()) from.push_back(f);
-    Bear(c, from, from_first_seen ? c.seen.front() : next_frame);
+    Bear(c, from, from_first_seen ? c.seen.front() : next_frame, !from_first_seen);
     chosen.push_back(std::move(c));
   }
   candidates_ = std::move(left);
 }
 
-bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, int first_frame) {
+bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, int first_frame, bool past) {
   auto p = std::make_unique<Person>();
   p->id = next_id_;
   TrackerOptions options = tracker_options_;
@@ -231,7 +246,7 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   // start's first frame).
   options.person = PersonPreference::Near(c.places.front(), options_.birth_clear_mm);
   p->tracker = std::make_unique<Tracker>(model_, cameras_, options, table_);
-  if (!p->tracker->StartFromFrames(frames)) return false;
+  if (!p->tracker->StartFromFrames(frames, past)) return false;
   p->first_frame = first_frame;
   ++next_id_;
   people_.push_back(std::move(p));
@@ -286,16 +301,17 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     p->tracker->DrawEstimate(p->last, &p->drawn);
   }
   // Deaths: lost too long, unseen too long while nobody hides them, or one person followed
-  // twice.
+  // twice. Runs add up frame intervals (the first frame counts as one at 30 frames/s), and
+  // end within half a frame of their time.
+  const double dt = stepped_ ? std::max(0.0, frame.time_s - last_time_s_) : 1.0 / 30;
+  const double tolerance = 0.5 * dt;
+  stepped_ = true;
+  last_time_s_ = frame.time_s;
   std::vector<int> ending;
   for (Person* p : order) {
-    p->lost_run = p->last.status == TrackStatus::kLost ? p->lost_run + 1 : 0;
-    if (p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p)) {
-      p->unseen_run = 0;
-    } else {
-      ++p->unseen_run;
-    }
-    if (p->lost_run >= options_.death_frames || p->unseen_run >= options_.death_frames ||
+    p->lost_s = p->last.status == TrackStatus::kLost ? p->lost_s + dt : 0;
+    p->unseen_s = p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p) ? 0 : p->unseen_s + dt;
+    if (p->lost_s >= options_.death_s - tolerance || p->unseen_s >= options_.death_s - tolerance ||
         (!p->confirmed && p->stepped >= options_.birth_window))
       ending.push_back(p->id);
   }
@@ -311,9 +327,10 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
       const double turn = std::remainder(p->last.heading_rad - q->last.heading_rad, 2 * std::numbers::pi);
       const bool same_way = std::abs(turn) < options_.duplicate_heading_deg * std::numbers::pi / 180;
       auto& [run, same_way_run] = together_[{p->id, q->id}];
-      run = apart < options_.duplicate_mm ? run + 1 : 0;
-      same_way_run = apart < options_.duplicate_mm && same_way ? same_way_run + 1 : 0;
-      if (run >= options_.duplicate_frames || same_way_run >= options_.duplicate_same_way_frames) ending.push_back(q->id);
+      run = apart < options_.duplicate_mm ? run + dt : 0;
+      same_way_run = apart < options_.duplicate_mm && same_way ? same_way_run + dt : 0;
+      if (run >= options_.duplicate_s - tolerance || same_way_run >= options_.duplicate_same_way_s - tolerance)
+        ending.push_back(q->id);
     }
   }
   for (auto it = people_.begin(); it != people_.end();) {

@@ -18,11 +18,17 @@
 // does (person_locator.h: a blob standing on the floor, 1-2.3 m tall, wholly in some view);
 // a place seen in birth_frames of the last birth_window frames, always within a walker's
 // reach of where it was seen before (birth_speed_mm_s), farther than birth_clear_mm from
-// everyone tracked, at least min_birth_share of an image's pixels, and not contradicted by
-// a camera that has the place in view and sees nothing there, starts a new person:
-// the start-up of tracker.h on those frames' unexplained masks, choosing the person
-// nearest that place. A shadow on the floor (no height), a blob in the air or a flicker
-// seen in a frame or two does not start anyone.
+// everyone tracked or a whole person's shape (its height read, its blob at least
+// shaped_area of its height squared: someone walking beside a tracked person, not a
+// sliver of their pixels that their estimate leaves over), at least min_birth_share of an
+// image's pixels, and not contradicted by a camera that has the place in view and sees
+// nothing there, starts a new person: the start-up of tracker.h on those frames'
+// unexplained masks, choosing the person nearest that place, placed where the walk
+// fitted through them is at the last of them (at 10 frames/s a walker seen in 8 frames
+// has gone a metre since the first). Sightings of one frame with blobs in the same camera
+// are different people (the locator gives each blob, or each part of a merged blob split
+// at its heads, to one), however near. A shadow on the floor (no height), a blob in the
+// air or a flicker seen in a frame or two does not start anyone.
 //
 // Confirmation. A new person is reported once confirm_frames of their first birth_window
 // frames are tracked with a mean IoU of confirm_iou or more; one who is not by then was
@@ -32,11 +38,11 @@
 //
 // Death. A person lost (tracker.h: explained badly, or out of every view), or not tracked
 // while nobody stands in front of them (half their drawing under others' in some camera),
-// for death_frames frames in a row ends: a single tracker keeps a person it cannot see
+// for death_s in a row ends: a single tracker keeps a person it cannot see
 // predicted for up to two seconds, taking them for hidden, but among several people
 // tracked the ones who could hide them are known. Two people within duplicate_mm of each other on the floor for
-// duplicate_frames frames in a row (a second: people crossing share a place for a third of
-// one), or duplicate_same_way_frames walking the same way, are one person followed twice
+// duplicate_s in a row (a second: people crossing share a place for a third of one), or
+// duplicate_same_way_s walking the same way, are one person followed twice
 // (two bodies do not stand in one place): the one born later ends.
 //
 // Identities are the trackers': each follows its own person by its own dynamics (place,
@@ -50,7 +56,7 @@
 // a tracked person left over by a slightly wrong estimate lies within 700 mm of its root.
 // min_birth_share 0.1%: a 60 px tall person (the smallest the surveillance rigs show) covers
 // about 600 px of 640x480, half of that, as a share so that it holds at any working size.
-// death_frames: half a second, the time for a tracker to find a person again after a short
+// death_s: half a second, the time for a tracker to find a person again after a short
 // occlusion (tracker.h keeps a hidden person predicted meanwhile).
 #pragma once
 
@@ -75,14 +81,18 @@ struct MultiTrackerOptions {
   double birth_speed_mm_s = 3000;  // a brisk walk is 1.5-2 m/s; 3 m/s with the locator's error
   double birth_margin_mm = 400;    // ...plus this, the locator's error on clean masks
   double birth_clear_mm = 700;
+  double shaped_area = 0.1;        // a walker's blob covers 0.2-0.25 of its height squared
   double explained_grow = 0.0125;  // share of the image height (6 px at 480)
   double min_birth_share = 0.001;
   int confirm_frames = 3;        // a new person is reported once this many of its first
   double confirm_iou = 0.3;      // birth_window frames explain the masks this well (mean IoU)
-  int death_frames = 15;
+  // In seconds, not frames, so that a surveillance camera's 10 frames/s keeps a stale body
+  // as briefly as 30 frames/s does (15 frames were 1.5 s of a body walking on in vtest.avi's
+  // plaza, where the person was not); runs are counted in frame intervals, to half a frame.
+  double death_s = 0.5;
   double duplicate_mm = 400;
-  int duplicate_frames = 30;       // ...or this many when they walk the same way (heading
-  int duplicate_same_way_frames = 10;  // within duplicate_heading_deg)
+  double duplicate_s = 1;                 // ...or this long when they walk the same way
+  double duplicate_same_way_s = 1.0 / 3;  // (heading within duplicate_heading_deg)
   double duplicate_heading_deg = 45;
   int hidden_grow_px = 1;
   // A person's tracker restarts only on someone this near where they were last explained
@@ -137,6 +147,7 @@ class MultiTracker {
     std::vector<int> seen;                  // frame indices
     std::vector<Eigen::Vector2d> places;    // where, in those frames
     std::vector<std::vector<cv::Rect>> boxes;  // and the blobs, per camera (empty: none)
+    bool shaped = false;                     // the last sighting PersonShaped
   };
   // Whether two candidates are one person: in a frame both were seen in, their places are
   // within birth_clear_mm, or, seen by different cameras, one's place (a body's middle
@@ -154,8 +165,15 @@ class MultiTracker {
   // (not in the final batch: Start bears them at its end) are born from the recent
   // unexplained frames.
   void Look(const Frame& unexplained, bool final_batch);
-  bool Bear(const Candidate& c, const std::vector<Frame>& frames, int first_frame);
+  // A person started on the candidate from `frames`, stepped from `first_frame` on; `past`:
+  // the frames are behind (a birth while tracking), so the start is where the walker is at
+  // the last of them.
+  bool Bear(const Candidate& c, const std::vector<Frame>& frames, int first_frame, bool past);
   bool Clear(const Eigen::Vector2d& floor_mm) const;
+  // Whether a sighting of what nobody explains is a whole person's shape in some camera
+  // (its height read, its blob's pixels at least shaped_area of its height squared): then
+  // it is someone beside a tracked person, not a leftover of their pixels.
+  bool PersonShaped(const PersonSighting& s) const;
   // Whether a camera that did not see the sighting has it wholly in view and, where a
   // 1.7 m person standing there would show, under 5% foreground (a blob one camera places
   // far away, clutter or a shadow, that another camera would see as a person and does not).
@@ -174,8 +192,10 @@ class MultiTracker {
   std::deque<Frame> recent_;  // unexplained masks of the last frames (start_frames)
   int next_id_ = 1;
   int looked_until_ = -1;     // frames Start has looked at already
-  // (id, later id): frames in a row within duplicate_mm, and within it walking the same way.
-  std::map<std::pair<int, int>, std::pair<int, int>> together_;
+  // (id, later id): time in a row within duplicate_mm, and within it walking the same way.
+  std::map<std::pair<int, int>, std::pair<double, double>> together_;  // seconds
+  double last_time_s_ = 0;  // the last frame's
+  bool stepped_ = false;
 };
 
 // Tracks every frame of a source: the first start_frames are looked at to start everyone

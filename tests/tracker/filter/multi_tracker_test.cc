@@ -6,8 +6,10 @@
 #include "tracker/filter/multi_tracker.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -177,6 +179,72 @@ TEST(MultiTracker, AWalkerHiddenBehindAnotherKeepsTheirId) {
   EXPECT_EQ(first, last);
 }
 
+// Two walkers side by side, shoulder to shoulder (0.45 m apart), coming towards the only
+// camera: their silhouettes are one blob from the first frame. Split at the heads
+// (person_locator.h), they are two people from the start, each born though the other
+// stands within birth_clear_mm. (Measured: MOTA 0.975; not split, 0.848, the second
+// person born 20 frames late from what the first one's body leaves unexplained.)
+TEST(MultiTracker, TwoWalkingTogetherAreTwo) {
+  test::TempDir dir;
+  const Camera front = LookAtCamera("cam0", 320, 240, 400, {7000, 1600, 0}, {0, 900, 0});
+  const fs::path clip = Render({Walker("07_01", {true, 0, -225, 0, 0}, 0), Walker("35_10", {true, 0, 225, 0, 0}, 3)},
+                               dir.path() / "together", 1, 0, {}, {front});
+  const TrackJobResult r = RunTrackJob(Job(clip));
+  Print("together", r);
+  EXPECT_EQ(r.mot->truth_tracks, 2);
+  EXPECT_EQ(Ids(r).size(), 2u);
+  EXPECT_GE(r.mot->mota, 0.93);
+  EXPECT_EQ(r.mot->id_switches, 0);
+}
+
+// At 10 frames/s (a surveillance camera's rate) a walker who enters once the others are
+// tracked is born where they are by then: their birth looks back over 5-8 frames, in which
+// they walked most of a metre. (Started where they were first seen, they were explained at
+// IoU 0 and ended unconfirmed, again and again: on vtest.avi most walkers entering the
+// plaza.)
+TEST(MultiTracker, AWalkerEnteringAtTenFramesASecondIsBornWhereTheyAre) {
+  test::TempDir dir;
+  // The second walker's trial begins 0.9 s into the first's, after the start's frames; one
+  // camera beside the walks sees them 70-100 px tall (a metre is 40-55 px there).
+  const std::vector<ClipWalker> walkers = {Walker("07_04", {true, 0, -1250, 0, 0}, 0),
+                                           Walker("07_01", {true, 0, 1250, 0, 0.35}, 3)};
+  const fs::path clip =
+      Render(walkers, dir.path() / "enters", 1, 0, [](ClipOptions* o) { o->fps = 10; }, {SideCamera(0, 8000)});
+  const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+  ASSERT_EQ(truth.people.size(), 2u);
+  const ClipPerson& entering = truth.people[1];
+  ASSERT_FALSE(entering.frames.empty());
+  const int enters = entering.frames.front().frame;
+  TrackJobOptions job = Job(clip);
+  job.tracker.start_frames = 5;
+  ASSERT_GT(enters, job.tracker.start_frames);
+  const TrackJobResult r = RunTrackJob(job);
+  Print("enters", r);
+  // The frames from the entering walker's birth on, and how near them the person born is.
+  int born_at = -1, near = 0, after = 0;
+  for (const PeopleFrame& f : r.people) {
+    if (f.index < enters) continue;
+    const auto truth_frame = std::find_if(entering.frames.begin(), entering.frames.end(),
+                                          [&](const ClipPersonFrame& t) { return t.frame == f.index; });
+    if (truth_frame == entering.frames.end()) continue;
+    const Eigen::Vector2d at(truth_frame->joints_mm(0, 0), truth_frame->joints_mm(2, 0));
+    bool found = false;
+    for (const PersonFrame& p : f.people)
+      found = found || (p.frame.joints_mm.cols() > 0 &&
+                        (Eigen::Vector2d(p.frame.joints_mm(0, 0), p.frame.joints_mm(2, 0)) - at).norm() < 300);
+    if (found && born_at < 0) born_at = f.index;
+    if (born_at >= 0) ++after, near += found;
+  }
+  std::printf("the second walker enters at frame %d of %zu, is tracked within 300 mm from frame %d, then in %d of %d "
+              "frames\n",
+              enters, r.people.size(), born_at, near, after);
+  ASSERT_GE(born_at, 0);
+  // Born after 5 of 8 frames and confirmed after 3 more (measured: 11 frames in; 21 when
+  // started where they were first seen).
+  EXPECT_LE(born_at, enters + 15);
+  EXPECT_GE(near, 0.8 * after);
+}
+
 // One walker, with a shadow on the floor and clutter blobs moving over the masks: one
 // person, nobody else ever born. (Measured MOTA 0.886: the first frames' shadow-stretched
 // blobs place the walker differently in each camera, so the walker is confirmed at frame 9.)
@@ -195,28 +263,45 @@ TEST(MultiTracker, AShadowAndClutterStartNobody) {
 }
 
 // A walker who leaves the only camera's view (it sees the first half of the walk) ends,
-// and nobody is reported after that.
-TEST(MultiTracker, AWalkerWhoLeavesEnds) {
-  test::TempDir dir;
-  const fs::path clip =
-      Render({Walker("07_01", {true, 1700, 0, 0, 0}, 0)}, dir.path() / "leaves", 1, 0, {}, {SideCamera(0, 3000)});
-  const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+// and nobody is reported after that: at 30 frames/s, and as soon (in seconds) at a
+// surveillance camera's 10 (a person's end was 15 frames, 1.5 s of a body walking on
+// there).
+int LastInView(const ClipGroundTruth& truth) {
   const std::vector<std::vector<MotPoint>> in_view = TruePeople(truth, static_cast<int>(truth.frames.size()));
-  int last_in_view = -1;
+  int last = -1;
   for (size_t k = 0; k < in_view.size(); ++k)
-    if (!in_view[k].empty()) last_in_view = static_cast<int>(k);
-  const TrackJobResult r = RunTrackJob(Job(clip));
-  Print("leaves", r);
-  ASSERT_LT(last_in_view + 20, static_cast<int>(truth.frames.size())) << "the walker must leave for a while";
+    if (!in_view[k].empty()) last = static_cast<int>(k);
+  return last;
+}
+int EndedAt(const TrackJobResult& r) {
   int ended_at = -1;
   for (const PeopleFrame& f : r.people)
     if (!f.ended.empty()) ended_at = f.index;
-  std::printf("last in view at frame %d, ended at %d of %zu\n", last_in_view, ended_at, truth.frames.size());
-  EXPECT_GT(ended_at, last_in_view);
-  EXPECT_LE(ended_at, last_in_view + 2 * MultiTrackerOptions().death_frames);
-  EXPECT_TRUE(r.people.back().people.empty());
-  EXPECT_GE(r.mot->mota, 0.7);  // measured 0.800: 2 frames before the walker is confirmed, 5
-                                // frames of their body walking on out of view
+  return ended_at;
+}
+TEST(MultiTracker, AWalkerWhoLeavesEnds) {
+  test::TempDir dir;
+  for (const double fps : {30.0, 10.0}) {
+    // At 10 frames/s the longer slow walk, so that the walker is out of view for long enough.
+    const fs::path clip = Render({Walker(fps == 30 ? "07_01" : "07_04", {true, 1700, 0, 0, 0}, 0)},
+                                 dir.path() / ("leaves" + std::to_string(static_cast<int>(fps))), 1, 0,
+                                 [fps](ClipOptions* o) { o->fps = fps; }, {SideCamera(0, 3000)});
+    const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+    const int last_in_view = LastInView(truth);
+    const TrackJobResult r = RunTrackJob(Job(clip));
+    Print("leaves", r);
+    const long bound = 2 * std::lround(MultiTrackerOptions().death_s * fps);  // frames
+    ASSERT_LT(last_in_view + bound + 2, static_cast<int>(truth.frames.size())) << "the walker must leave for a while";
+    const int ended_at = EndedAt(r);
+    std::printf("%.0f frames/s: last in view at frame %d, ended at %d of %zu\n", fps, last_in_view, ended_at,
+                truth.frames.size());
+    EXPECT_GT(ended_at, last_in_view);
+    EXPECT_LE(ended_at, last_in_view + bound);
+    EXPECT_TRUE(r.people.back().people.empty());
+    // Measured at 30 frames/s: 0.800 (2 frames before the walker is confirmed, 5 frames of
+    // their body walking on out of view).
+    if (fps == 30) EXPECT_GE(r.mot->mota, 0.7);
+  }
 }
 
 std::string ReadBytes(const fs::path& path) {
@@ -249,6 +334,10 @@ TEST(MultiTracker, BadOptionsAreRefused) {
   o = MultiTrackerOptions();
   o.max_people = 0;
   EXPECT_FALSE(o.Check(&why));
+  o = MultiTrackerOptions();
+  o.death_s = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_NE(why.find("death"), std::string::npos);
 }
 
 }  // namespace
