@@ -175,6 +175,32 @@ std::vector<cv::Rect> SplitAtHeads(const cv::Mat& labels, int label, const cv::R
   return parts;
 }
 
+// Blob `label` in `box` cut across at its narrowest row between 30% and 70% of its height
+// (ties: the nearest the middle): the parts above and below it, each trimmed to its pixels.
+std::vector<cv::Rect> CutAcross(const cv::Mat& labels, int label, const cv::Rect& box) {
+  int cut = -1, narrowest = std::numeric_limits<int>::max();
+  const int middle = box.y + box.height / 2;
+  for (int v = box.y + box.height * 3 / 10; v <= box.y + box.height * 7 / 10; ++v) {
+    const int* row = labels.ptr<int>(v);
+    int width = 0;
+    for (int u = box.x; u < box.x + box.width; ++u) width += row[u] == label;
+    if (width < narrowest || (width == narrowest && std::abs(v - middle) < std::abs(cut - middle)))
+      narrowest = width, cut = v;
+  }
+  std::vector<cv::Rect> parts;
+  if (cut < 0) return parts;
+  for (const auto& [from, to] : {std::pair{box.y, cut}, std::pair{cut + 1, box.y + box.height}}) {
+    int x0 = box.x + box.width, x1 = box.x - 1, y0 = to, y1 = from - 1;
+    for (int v = from; v < to; ++v) {
+      const int* row = labels.ptr<int>(v);
+      for (int u = box.x; u < box.x + box.width; ++u)
+        if (row[u] == label) x0 = std::min(x0, u), x1 = std::max(x1, u), y0 = std::min(y0, v), y1 = std::max(y1, v);
+    }
+    if (x1 >= x0) parts.emplace_back(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+  }
+  return parts;
+}
+
 }  // namespace
 
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
@@ -197,64 +223,76 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     std::vector<int> areas;
     std::vector<cv::Rect> boxes;
     const int n = BodyBlobs(masks[c], &labels, &areas, &boxes);
+    // A part of blob `l` in `box` considered as a person; true when it is too tall for one
+    // (over 2.3 m where it stands).
+    const auto consider = [&](int l, const cv::Rect& box, int area) -> bool {
+      if (area < min_blob_px) return false;
+      const BlobEnds ends = FindBlobEnds(labels, l, box);
+      const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
+      const bool head_cut = box.y <= 0;
+      // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
+      // back), whose top is not a head.
+      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
+      Eigen::Matrix2Xd pixels(2, 2);
+      pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
+      const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
+      const Eigen::Vector3d r = rays.col(1);
+      const Eigen::Vector2d horizontal(r.x(), r.z());
+      if (horizontal.squaredNorm() < 1e-12) return false;
+      Eigen::Vector3d floor;
+      double height = 0;  // unknown unless both ends are in view
+      if (!feet_cut) {
+        if (!(rays(1, 0) < -1e-6)) return false;  // the foot ray must go down to the floor
+        floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
+        if (!head_cut) {
+          // Height: the top ray's point nearest the vertical line through the floor point.
+          const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
+          const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
+          height = eye.y() + along * r.y();
+          // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
+          if (!(along > 0 && height > 1000 && height < 2300)) return along > 0 && height >= 2300;
+        }
+      } else {
+        // The feet below the image (a camera near the walk): the person stands where the
+        // top ray is an adult's height above the floor, but no farther than where the
+        // image's bottom edge meets the floor (the feet are below that edge, so nearer).
+        // From a camera at head height the first alone can put a person tens of metres
+        // away.
+        if (head_cut) return false;
+        Eigen::Matrix2Xd edge(2, 1);
+        edge << ends.foot_u, masks[c].rows - 0.5;
+        const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);
+        const Eigen::Vector2d horizontal_down(down.x(), down.z());
+        double reach = std::numeric_limits<double>::infinity();  // horizontal distance
+        if (down.y() < -1e-6) reach = horizontal_down.norm() * (-eye.y() / down.y());
+        const double t = std::abs(r.y()) > 1e-6 ? (kAdultHeightMm - eye.y()) / r.y() : -1;
+        double distance = t > 0 ? horizontal.norm() * t : reach;
+        distance = std::min(distance, reach);
+        if (!std::isfinite(distance)) return false;
+        // What it shows there must be a standing person's upper body: from the head (at
+        // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not).
+        const double top = eye.y() + r.y() * distance / horizontal.norm();
+        const double bottom = eye.y() + down.y() * distance / horizontal_down.norm();
+        if (!(top < 2300 && top - bottom >= 800)) return false;
+        const Eigen::Vector2d along = horizontal.normalized() * distance;
+        floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
+      }
+      candidates[c].push_back(
+          {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut});
+      return false;
+    };
     for (int l = 1; l < n; ++l) {
       if (areas[l] < min_blob_px) continue;
       const std::vector<cv::Rect> parts = SplitAtHeads(labels, l, boxes[l]);
       for (const cv::Rect& box : parts) {
         const int area = parts.size() == 1 ? areas[l] : cv::countNonZero(labels(box) == l);
-        if (area < min_blob_px) continue;
-        const BlobEnds ends = FindBlobEnds(labels, l, box);
-        const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
-        const bool head_cut = box.y <= 0;
-        // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
-        // back), whose top is not a head.
-        const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
-        Eigen::Matrix2Xd pixels(2, 2);
-        pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
-        const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
-        const Eigen::Vector3d r = rays.col(1);
-        const Eigen::Vector2d horizontal(r.x(), r.z());
-        if (horizontal.squaredNorm() < 1e-12) continue;
-        Eigen::Vector3d floor;
-        double height = 0;  // unknown unless both ends are in view
-        if (!feet_cut) {
-          if (!(rays(1, 0) < -1e-6)) continue;  // the foot ray must go down to the floor
-          floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
-          if (!head_cut) {
-            // Height: the top ray's point nearest the vertical line through the floor point.
-            const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
-            const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
-            height = eye.y() + along * r.y();
-            // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
-            if (!(along > 0 && height > 1000 && height < 2300)) continue;
-          }
-        } else {
-          // The feet below the image (a camera near the walk): the person stands where the
-          // top ray is an adult's height above the floor, but no farther than where the
-          // image's bottom edge meets the floor (the feet are below that edge, so nearer).
-          // From a camera at head height the first alone can put a person tens of metres
-          // away.
-          if (head_cut) continue;
-          Eigen::Matrix2Xd edge(2, 1);
-          edge << ends.foot_u, masks[c].rows - 0.5;
-          const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);
-          const Eigen::Vector2d horizontal_down(down.x(), down.z());
-          double reach = std::numeric_limits<double>::infinity();  // horizontal distance
-          if (down.y() < -1e-6) reach = horizontal_down.norm() * (-eye.y() / down.y());
-          const double t = std::abs(r.y()) > 1e-6 ? (kAdultHeightMm - eye.y()) / r.y() : -1;
-          double distance = t > 0 ? horizontal.norm() * t : reach;
-          distance = std::min(distance, reach);
-          if (!std::isfinite(distance)) continue;
-          // What it shows there must be a standing person's upper body: from the head (at
-          // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not).
-          const double top = eye.y() + r.y() * distance / horizontal.norm();
-          const double bottom = eye.y() + down.y() * distance / horizontal_down.norm();
-          if (!(top < 2300 && top - bottom >= 800)) continue;
-          const Eigen::Vector2d along = horizontal.normalized() * distance;
-          floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
-        }
-        candidates[c].push_back(
-            {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut});
+        if (!consider(l, box, area)) continue;
+        // Too tall for one person: one standing behind another, their feet hidden by the
+        // nearer one's head (a camera looking down on a plaza), or the two joined across a
+        // gap. Cut at the blob's narrowest row in its middle (the gap, or where the far
+        // one's legs meet the near one's head) and each part considered on its own.
+        for (const cv::Rect& piece : CutAcross(labels, l, box))
+          consider(l, piece, cv::countNonZero(labels(piece) == l));
       }
     }
   }

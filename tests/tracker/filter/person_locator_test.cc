@@ -415,5 +415,40 @@ TEST(PersonLocator, TwoPeopleSideBySideInOneBlobAreTwo) {
   EXPECT_EQ(two, views);
 }
 
+// A camera 6 m up looking down on a plaza: one walker stands 2.5 m behind another, their
+// legs hidden by the nearer one's head and shoulders, the two one tall blob. It is too
+// tall for one person, so it is cut across at its narrowest row: two people, the nearer
+// where they stand, the farther behind them.
+TEST(PersonLocator, OneStandingBehindAnotherIsTwo) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
+  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/07/07_01.amc", skeleton);
+  const Eigen::Matrix3Xd walk = Kinematics(skeleton).Compute(motion.Frame(motion.NumFrames() / 2));
+  const BodyModel body(skeleton, {}, "07.asf");
+  const Camera camera = LookAtCamera("cam0", 320, 240, 500, {0, 6000, -9000}, {0, 900, 1000});
+  std::vector<Capsule> both;
+  std::vector<Eigen::Vector2d> roots;
+  for (const double z : {0.0, 2500.0}) {
+    Eigen::Matrix3Xd joints = walk;
+    joints.row(0).array() -= walk(0, 0);
+    joints.row(2).array() += z - walk(2, 0);
+    roots.emplace_back(joints(0, 0), joints(2, 0));
+    for (const Capsule& c : body.Place(joints)) both.push_back(c);
+  }
+  BodyImage image;
+  RayCaster(camera).Render(both, &image);
+  const cv::Mat mask = image.Mask();
+  cv::Mat labels;
+  ASSERT_EQ(cv::connectedComponents(mask, labels), 2) << "one blob";
+  const std::vector<PersonSighting> people = LocatePeople({camera}, {mask});
+  ASSERT_EQ(people.size(), 2u);
+  const PersonSighting& near = people[0].floor_mm.y() < people[1].floor_mm.y() ? people[0] : people[1];
+  const PersonSighting& far = &near == &people[0] ? people[1] : people[0];
+  std::printf("one behind another: the nearer found %.0f mm from their root, the farther %.0f mm (%.0f mm behind the "
+              "nearer's place)\n",
+              (near.floor_mm - roots[0]).norm(), (far.floor_mm - roots[1]).norm(), far.floor_mm.y() - near.floor_mm.y());
+  EXPECT_LT((near.floor_mm - roots[0]).norm(), kOneCameraFloorBoundMm);
+  EXPECT_GT(far.floor_mm.y() - near.floor_mm.y(), 700);  // someone else, behind
+}
+
 }  // namespace
 }  // namespace jgpm
