@@ -131,7 +131,7 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
   for (const Camera& c : cameras_)
     min_px = std::max(min_px, static_cast<int>(std::lround(options_.min_birth_share * c.width * c.height)));
   std::vector<PersonSighting> sightings;
-  for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px)) {
+  for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true)) {
     if (s.found && s.whole && (Clear(s.floor_mm) || PersonShaped(s)) && !Contradicted(s, unexplained.masks))
       sightings.push_back(s);
   }
@@ -242,6 +242,7 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   TrackerOptions options = tracker_options_;
   options.annealing.seed = tracker_options_.annealing.seed + 1000003ull * static_cast<uint64_t>(p->id - 1);
   options.restart_within_mm = options_.restart_within_mm;
+  options.split_merged_starts = true;  // as the birth saw them
   // The start's own choice: the person nearest where the candidate was first seen (the
   // start's first frame).
   options.person = PersonPreference::Near(c.places.front(), options_.birth_clear_mm);

@@ -204,7 +204,7 @@ std::vector<cv::Rect> CutAcross(const cv::Mat& labels, int label, const cv::Rect
 }  // namespace
 
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
-                                         int min_blob_px) {
+                                         int min_blob_px, bool split_merged) {
   // Per camera, every blob big enough, with where it stands and how tall it is there.
   struct Candidate {
     int area;
@@ -283,10 +283,11 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     };
     for (int l = 1; l < n; ++l) {
       if (areas[l] < min_blob_px) continue;
-      const std::vector<cv::Rect> parts = SplitAtHeads(labels, l, boxes[l]);
+      const std::vector<cv::Rect> parts =
+          split_merged ? SplitAtHeads(labels, l, boxes[l]) : std::vector<cv::Rect>{boxes[l]};
       for (const cv::Rect& box : parts) {
         const int area = parts.size() == 1 ? areas[l] : cv::countNonZero(labels(box) == l);
-        if (!consider(l, box, area)) continue;
+        if (!consider(l, box, area) || !split_merged) continue;
         // Too tall for one person: one standing behind another, their feet hidden by the
         // nearer one's head (a camera looking down on a plaza), or the two joined across a
         // gap. Cut at the blob's narrowest row in its middle (the gap, or where the far

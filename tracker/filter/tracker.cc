@@ -167,7 +167,7 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   std::vector<double> times;
   for (const Frame& f : frames) {
     if (f.dropped) continue;
-    people.push_back(LocatePeople(cameras_, f.masks));
+    people.push_back(LocatePeople(cameras_, f.masks, 60, options_.split_merged_starts));
     times.push_back(f.time_s - frames.front().time_s);
   }
   // The person followed from a first sighting: in each frame the one nearest where they

@@ -130,6 +130,9 @@ struct TrackerOptions {
   // (infinite: whoever is nearest). Several people tracked at once set it (multi_tracker.h):
   // there the nearest may be somebody else's leftovers.
   double restart_within_mm = std::numeric_limits<double>::infinity();
+  // Starts (and restarts) read merged blobs as the people in them (LocatePeople's
+  // split_merged); several people tracked at once set it, as their births do.
+  bool split_merged_starts = false;
 
   bool Check(std::string* why) const;
 };

@@ -388,7 +388,7 @@ TEST(PersonLocator, TwoPeopleSideBySideInOneBlobAreTwo) {
   int views = 0, two = 0;
   for (const View& v : s.views) {
     for (size_t c = 0; c < s.cameras.size(); ++c) {
-      const std::vector<PersonSighting> alone = LocatePeople({s.cameras[c]}, {v.masks[c]});
+      const std::vector<PersonSighting> alone = LocatePeople({s.cameras[c]}, {v.masks[c]}, 60, true);
       EXPECT_EQ(alone.size(), 1u) << "camera " << c;
     }
     const int c = 1;  // the front camera: side by side there is side by side in the image
@@ -400,7 +400,8 @@ TEST(PersonLocator, TwoPeopleSideBySideInOneBlobAreTwo) {
     const cv::Mat both = moved | v.masks[c];
     Eigen::Vector2d root;
     ASSERT_TRUE(s.cameras[c].Project(Eigen::Vector3d(v.root_mm.x(), 900, v.root_mm.y()), &root));
-    const std::vector<PersonSighting> people = LocatePeople({s.cameras[c]}, {both});
+    EXPECT_EQ(LocatePeople({s.cameras[c]}, {both}).size(), 1u);  // not asked to split
+    const std::vector<PersonSighting> people = LocatePeople({s.cameras[c]}, {both}, 60, true);
     ++views;
     if (people.size() != 2) continue;
     ++two;
@@ -439,7 +440,8 @@ TEST(PersonLocator, OneStandingBehindAnotherIsTwo) {
   const cv::Mat mask = image.Mask();
   cv::Mat labels;
   ASSERT_EQ(cv::connectedComponents(mask, labels), 2) << "one blob";
-  const std::vector<PersonSighting> people = LocatePeople({camera}, {mask});
+  EXPECT_TRUE(LocatePeople({camera}, {mask}).empty());  // not asked to cut
+  const std::vector<PersonSighting> people = LocatePeople({camera}, {mask}, 60, true);
   ASSERT_EQ(people.size(), 2u);
   const PersonSighting& near = people[0].floor_mm.y() < people[1].floor_mm.y() ? people[0] : people[1];
   const PersonSighting& far = &near == &people[0] ? people[1] : people[0];
