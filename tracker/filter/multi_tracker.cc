@@ -207,8 +207,7 @@ bool MultiTracker::Same(const Candidate& a, const Candidate& b) const {
       // blobs of one camera in one frame are two people, however near.
       if (!apart(a.boxes[i], b.boxes[j])) continue;
       if ((a.places[i] - b.places[j]).norm() < options_.birth_clear_mm) return true;
-      if (apart(a.boxes[i], b.boxes[j]) && (inside(a.places[i], b.boxes[j]) || inside(b.places[j], a.boxes[i])))
-        return true;
+      if (inside(a.places[i], b.boxes[j]) || inside(b.places[j], a.boxes[i])) return true;
     }
   }
   return false;

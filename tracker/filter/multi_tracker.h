@@ -149,11 +149,11 @@ class MultiTracker {
     std::vector<std::vector<cv::Rect>> boxes;  // and the blobs, per camera (empty: none)
     bool shaped = false;                     // the last sighting PersonShaped
   };
-  // Whether two candidates are one person: in a frame both were seen in, their places are
-  // within birth_clear_mm, or, seen by different cameras, one's place (a body's middle
-  // above it) falls beside the other's blob (a camera alone places a person along its ray,
-  // and a shadow or a cut-off foot moves that place: two cameras' single sightings of one
-  // person can lie a metre or more apart).
+  // Whether two candidates are one person: in a frame both were seen in by different
+  // cameras only (blobs of one camera are different people), their places are within
+  // birth_clear_mm, or one's place (a body's middle above it) falls beside the other's blob
+  // (a camera alone places a person along its ray, and a shadow or a cut-off foot moves
+  // that place: two cameras' single sightings of one person can lie a metre or more apart).
   bool Same(const Candidate& a, const Candidate& b) const;
   // The candidates that qualify (seen in `needed` frames), one per person, the most seen
   // first, born from the frames in `frames` that they were seen in or after.

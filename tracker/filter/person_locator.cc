@@ -129,7 +129,7 @@ constexpr double kPeak = 0.12, kDip = 0.12, kSide = 0.15;
 std::vector<cv::Rect> SplitAtHeads(const cv::Mat& labels, int label, const cv::Rect& box, int depth = 0) {
   const int h = box.height, w = box.width;
   const int side = static_cast<int>(std::ceil(kSide * h));
-  if (depth >= 3 || w < 2 * side || box.y <= 0) return {box};
+  if (depth >= 3 || side < 1 || w < 2 * side || box.y <= 0) return {box};
   std::vector<int> top(w, box.y + h), count(w, 0);
   int total = 0;
   for (int v = box.y; v < box.y + h; ++v) {

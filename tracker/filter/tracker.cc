@@ -277,7 +277,7 @@ bool Tracker::StartFromFrames(const std::vector<Frame>& frames, bool at_last) {
   std::vector<cv::Rect> boxes;
   if (!Guess(frames, &guess, next_choice_, &boxes, at_last)) return false;
   StartAt(guess, at_last ? frames.back().index : frames.front().index);
-  start_boxes_ = boxes;  // where to look at the start: the person's first blobs
+  start_boxes_ = boxes;  // where to look at the start: the person's blobs then
   return true;
 }
 

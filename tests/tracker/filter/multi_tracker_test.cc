@@ -111,6 +111,17 @@ std::set<int> Ids(const TrackJobResult& r) {
   return ids;
 }
 
+// A clip of two walkers tracked as two people, no identity switched, with at least
+// `mota` and the paired people's pose within `pose_mm` (bodytrack's 14 joints).
+void ExpectTwoPeople(const TrackJobResult& r, double mota, double pose_mm) {
+  EXPECT_EQ(r.mot->truth_tracks, 2);
+  EXPECT_EQ(Ids(r).size(), 2u);
+  EXPECT_GE(r.mot->mota, mota);
+  EXPECT_EQ(r.mot->id_switches, 0);
+  ASSERT_TRUE(r.matched_bodytrack14);
+  EXPECT_LT(r.matched_bodytrack14->absolute_mm, pose_mm);
+}
+
 // Two walkers 2.5 m apart, walking the same way: two people, each with a pose near theirs.
 // Measured: MOTA 0.975 (each confirmed after 2 frames), 54 mm over bodytrack's 14 joints
 // (the one-person tracker_test's clip at 160x120 and the same budget: 80 mm).
@@ -120,12 +131,7 @@ TEST(MultiTracker, TwoWalkersApartAreTwoPeopleWithTheirPoses) {
                                dir.path() / "apart");
   const TrackJobResult r = RunTrackJob(Job(clip));
   Print("apart", r);
-  EXPECT_EQ(r.mot->truth_tracks, 2);
-  EXPECT_EQ(Ids(r).size(), 2u);
-  EXPECT_GE(r.mot->mota, 0.9);
-  EXPECT_EQ(r.mot->id_switches, 0);
-  ASSERT_TRUE(r.matched_bodytrack14);
-  EXPECT_LT(r.matched_bodytrack14->absolute_mm, 130);
+  ExpectTwoPeople(r, 0.9, 130);
 }
 
 // The same two walkers sent across each other's path at the same moment: still two people,
@@ -191,14 +197,9 @@ TEST(MultiTracker, TwoWalkingTogetherAreTwo) {
                                dir.path() / "together", 1, 0, {}, {front});
   const TrackJobResult r = RunTrackJob(Job(clip));
   Print("together", r);
-  EXPECT_EQ(r.mot->truth_tracks, 2);
-  EXPECT_EQ(Ids(r).size(), 2u);
-  EXPECT_GE(r.mot->mota, 0.93);
-  EXPECT_EQ(r.mot->id_switches, 0);
   // Each started on their own half of the blob (TrackerOptions::split_merged_starts): 134
   // mm over bodytrack's 14 joints; started on the whole blob's place, 184.
-  ASSERT_TRUE(r.matched_bodytrack14);
-  EXPECT_LT(r.matched_bodytrack14->absolute_mm, 160);
+  ExpectTwoPeople(r, 0.93, 160);
 }
 
 // At 10 frames/s (a surveillance camera's rate) a walker who enters once the others are
