@@ -377,6 +377,37 @@ class TrackerTest(Fixture):
         self.assertGreater(tracked, 20)
         self.assertEqual(len(tracker.joint_names), len(estimates[-1]["joints_mm"]))
 
+    def test_stepping_people_all_gives_the_commands_people(self):
+        import cv2
+        clip, out = self.dir / "two_clip", self.dir / "two_people"
+        amc = self.data / "subjects" / "07" / "07_01.amc"
+        run_jgpm("render", "--amc", amc, "--amc", amc, "--walk", "0,0,0,0", "--walk", "0,2000,0,0", "--max-frames", 24,
+                 "--body-seed", 3, "--no-contact-sheet", "--out", clip)
+        run_jgpm("track", "--model", self.models["jgpm"], "--clip", clip, "--seed", 2, "--no-overlay", "--people", "all",
+                 "--out", out)
+        expected = json.loads((out / "poses.json").read_text())["frames"]
+        names = sorted(p.stem for p in clip.glob("cam*.yaml"))
+        cameras = [jgpm.Camera.from_yaml(str(clip / f"{name}.yaml")) for name in names]
+        tracker = jgpm.Tracker(jgpm.load_model(self.models["jgpm"]), cameras, seed=2, threads=1, people="all")
+        frames = []
+        for k in range(len(expected)):
+            masks = [cv2.imread(str(clip / "observed" / name / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for name in names]
+            got = tracker.step(masks)
+            self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
+            frames += got
+        self.assertEqual(tracker.finish(), [])
+        self.assertEqual(len(frames), len(expected))
+        for e, f in zip(frames, expected):
+            self.assertEqual((e["frame"], e["born"], e["ended"]), (f["frame"], f["born"], f["ended"]))
+            self.assertEqual([(p["id"], p["status"]) for p in e["people"]], [(p["id"], p["status"]) for p in f["people"]])
+            for p, q in zip(e["people"], f["people"]):
+                if q["joints_mm"] is not None:
+                    np.testing.assert_allclose(p["joints_mm"], q["joints_mm"], atol=0.006)
+        self.assertEqual({p["id"] for e in frames for p in e["people"]}, {1, 2})  # the two walkers
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.Tracker(jgpm.load_model(self.models["jgpm"]), cameras, people="some")
+        self.assertIn("people", str(caught.exception))
+
     def test_masks_of_the_wrong_size_or_number_are_refused(self):
         camera = self.dir / "cam.yaml"
         camera.write_text(CameraTest.yaml())

@@ -35,6 +35,7 @@
 #include "prior/model/inference.h"
 #include "prior/model/model_kind.h"
 #include "prior/model/train.h"
+#include "tracker/filter/multi_tracker.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/run/pose_table_cache.h"
 #include "tracker/cli/walker_video.h"
@@ -250,23 +251,40 @@ py::dict EstimateDict(const TrackedFrame& f) {
   return d;
 }
 
+// A frame of several people as Python sees it (poses.json's with --people all): each
+// person an estimate with its id.
+py::dict PeopleDict(const PeopleFrame& f) {
+  py::list everyone;
+  for (const PersonFrame& p : f.people) {
+    py::dict d = EstimateDict(p.frame);
+    d["id"] = p.id;
+    everyone.append(d);
+  }
+  return py::dict(py::arg("frame") = f.index, py::arg("time_s") = f.time_s, py::arg("people") = everyone,
+                  py::arg("born") = f.born, py::arg("ended") = f.ended);
+}
+
 // The tracker fed one frame of masks at a time (from any segmenter). Its start looks at the
-// first start_frames frames together (the person's place, height and heading), so those
-// are returned together once they are all in; after that each step returns its frame.
+// first start_frames frames together (the person's place, height and heading, or everyone
+// in view), so those are returned together once they are all in; after that each step
+// returns its frame. people='all': a MultiTracker, each frame as PeopleDict.
 struct PyTracker {
   std::shared_ptr<const GaitModel> model;
   std::vector<Camera> cameras;
-  std::unique_ptr<Tracker> tracker;
+  std::unique_ptr<Tracker> tracker;      // people='one'
+  std::unique_ptr<MultiTracker> multi;   // people='all'
   double fps = 30;
+  int start_frames = 0;
   std::vector<Frame> first;  // held for the start
   bool started = false;
   int next = 0;
 
   PyTracker(const PyModel& m, std::vector<Camera> cams, uint64_t seed, int particles, int layers, int threads,
-            double frames_per_second)
+            double frames_per_second, const std::string& people, int max_people)
       : model(m.model), cameras(std::move(cams)), fps(frames_per_second) {
     if (cameras.empty()) throw InputError("Tracker: give at least one camera");
     if (!(fps > 0)) throw InputError("Tracker: fps must be positive");
+    if (people != "one" && people != "all") ThrowInputError("people='" + people + "'", "expected 'one' or 'all'");
     TrackerOptions options;
     options.annealing.seed = seed;
     options.annealing.particles = particles;
@@ -277,7 +295,14 @@ struct PyTracker {
     table_options.threads = options.threads;
     const std::shared_ptr<const PoseTable> table =
         CachedPoseTable(*model, m.path.string(), "", table_options, nullptr);
-    tracker = std::make_unique<Tracker>(*model, cameras, options, table);
+    start_frames = options.start_frames;
+    if (people == "all") {
+      MultiTrackerOptions everyone;
+      everyone.max_people = max_people;
+      multi = std::make_unique<MultiTracker>(*model, cameras, options, everyone, table);
+    } else {
+      tracker = std::make_unique<Tracker>(*model, cameras, options, table);
+    }
   }
 
   // One frame: a mask per camera (H x W, any number type or bool; nonzero is the person),
@@ -307,15 +332,24 @@ struct PyTracker {
     py::list out;
     if (!started) {
       first.push_back(std::move(frame));
-      if (static_cast<int>(first.size()) < tracker->options().start_frames) return out;
+      if (static_cast<int>(first.size()) < start_frames) return out;
       return Start();
     }
-    TrackedFrame f;
-    {
-      py::gil_scoped_release release;
-      f = tracker->Step(frame);
+    if (multi) {
+      PeopleFrame f;
+      {
+        py::gil_scoped_release release;
+        f = multi->Step(frame);
+      }
+      out.append(PeopleDict(f));
+    } else {
+      TrackedFrame f;
+      {
+        py::gil_scoped_release release;
+        f = tracker->Step(frame);
+      }
+      out.append(EstimateDict(f));
     }
-    out.append(EstimateDict(f));
     return out;
   }
   // The frames still held for the start (a sequence shorter than start_frames), tracked.
@@ -324,14 +358,21 @@ struct PyTracker {
   py::list Start() {
     started = true;
     std::vector<TrackedFrame> tracked;
+    std::vector<PeopleFrame> everyone;
     {
       py::gil_scoped_release release;
-      tracker->StartFromFrames(first);
-      for (const Frame& f : first) tracked.push_back(tracker->Step(f));
+      if (multi) {
+        multi->Start(first);
+        for (const Frame& f : first) everyone.push_back(multi->Step(f));
+      } else {
+        tracker->StartFromFrames(first);
+        for (const Frame& f : first) tracked.push_back(tracker->Step(f));
+      }
     }
     first.clear();
     py::list out;
     for (const TrackedFrame& f : tracked) out.append(EstimateDict(f));
+    for (const PeopleFrame& f : everyone) out.append(PeopleDict(f));
     return out;
   }
 };
@@ -409,16 +450,7 @@ py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& video
   }
   py::list frames;
   for (const TrackedFrame& f : result.run.frames) frames.append(EstimateDict(f));
-  for (const PeopleFrame& f : result.people) {  // people='all': each frame's people, with their ids
-    py::list everyone;
-    for (const PersonFrame& p : f.people) {
-      py::dict d = EstimateDict(p.frame);
-      d["id"] = p.id;
-      everyone.append(d);
-    }
-    frames.append(py::dict(py::arg("frame") = f.index, py::arg("time_s") = f.time_s, py::arg("people") = everyone,
-                           py::arg("born") = f.born, py::arg("ended") = f.ended));
-  }
+  for (const PeopleFrame& f : result.people) frames.append(PeopleDict(f));  // people='all
   py::list written;
   for (const fs::path& p : result.written) written.append(p.string());
   return py::dict(py::arg("frames") = frames, py::arg("tracking_seconds") = result.run.tracking_seconds,
@@ -616,11 +648,14 @@ PYBIND11_MODULE(jgpm, m) {
   py::class_<PyTracker>(m, "Tracker",
                         "The annealed particle filter in a prior's latent space, fed one frame of binary masks "
                         "(one per camera) at a time from any segmenter.")
-      .def(py::init<const PyModel&, std::vector<Camera>, uint64_t, int, int, int, double>(), py::arg("model"),
-           py::arg("cameras"), py::arg("seed") = 1, py::arg("particles") = 200, py::arg("layers") = 4,
-           py::arg("threads") = 0, py::arg("fps") = 30.0,
+      .def(py::init<const PyModel&, std::vector<Camera>, uint64_t, int, int, int, double, const std::string&, int>(),
+           py::arg("model"), py::arg("cameras"), py::arg("seed") = 1, py::arg("particles") = 200,
+           py::arg("layers") = 4, py::arg("threads") = 0, py::arg("fps") = 30.0, py::arg("people") = "one",
+           py::arg("max_people") = 8,
            "As `jgpm track` with its defaults (threads 0: all cores; the same seed gives the same poses for any "
-           "thread count). The model's pose table is read from beside its file, or built and kept there.")
+           "thread count). The model's pose table is read from beside its file, or built and kept there. "
+           "people='all' (--people all, at most max_people at once): each frame is {frame, time_s, people, born, "
+           "ended}, each person an estimate with its id.")
       .def("step", &PyTracker::Step, py::arg("masks"),
            "One frame: a list of masks, one per camera (height x width, nonzero: the person), or None for a frame "
            "not seen. Returns the frames tracked by this call, as dicts (frame, time_s, status, joints_mm: joints "
