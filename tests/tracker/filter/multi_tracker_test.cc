@@ -305,7 +305,9 @@ TEST(MultiTracker, AWalkerWhoLeavesEnds) {
     EXPECT_TRUE(r.people.back().people.empty());
     // Measured at 30 frames/s: 0.800 (2 frames before the walker is confirmed, 5 frames of
     // their body walking on out of view).
-    if (fps == 30) EXPECT_GE(r.mot->mota, 0.7);
+    if (fps == 30) {
+      EXPECT_GE(r.mot->mota, 0.7);
+    }
   }
 }
 
