@@ -346,8 +346,20 @@ class TrackVideoTest(Fixture):
 
 
 class TrackerTest(Fixture):
-    def test_stepping_a_clips_masks_gives_the_commands_poses(self):
+    def step_observed_masks(self, tracker, clip, names, count):
+        """The clip's first `count` frames of observed masks stepped through `tracker`: the
+        frames it returned, none until the start's 15 are in, then one a call."""
         import cv2
+        frames = []
+        for k in range(count):
+            masks = [cv2.imread(str(clip / "observed" / name / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for name in names]
+            got = tracker.step(masks)
+            self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
+            frames += got
+        self.assertEqual(tracker.finish(), [])
+        return frames
+
+    def test_stepping_a_clips_masks_gives_the_commands_poses(self):
         clip, out = self.dir / "clip", self.dir / "tracked"
         run_jgpm("render", "--amc", self.data / "subjects" / "35" / "35_12.amc", "--max-frames", 24,
                  "--no-contact-sheet", "--out", clip)
@@ -356,13 +368,7 @@ class TrackerTest(Fixture):
         names = sorted(p.stem for p in clip.glob("cam*.yaml"))
         cameras = [jgpm.Camera.from_yaml(str(clip / f"{name}.yaml")) for name in names]
         tracker = jgpm.Tracker(jgpm.load_model(self.models["jgpm"]), cameras, seed=2, threads=1)
-        estimates = []
-        for k in range(len(expected)):
-            masks = [cv2.imread(str(clip / "observed" / name / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for name in names]
-            got = tracker.step(masks)
-            self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
-            estimates += got
-        self.assertEqual(tracker.finish(), [])
+        estimates = self.step_observed_masks(tracker, clip, names, len(expected))
         self.assertEqual(len(estimates), len(expected))
         tracked = 0
         for e, f in zip(estimates, expected):
@@ -378,7 +384,6 @@ class TrackerTest(Fixture):
         self.assertEqual(len(tracker.joint_names), len(estimates[-1]["joints_mm"]))
 
     def test_stepping_people_all_gives_the_commands_people(self):
-        import cv2
         clip, out = self.dir / "two_clip", self.dir / "two_people"
         amc = self.data / "subjects" / "07" / "07_01.amc"
         run_jgpm("render", "--amc", amc, "--amc", amc, "--walk", "0,0,0,0", "--walk", "0,2000,0,0", "--max-frames", 24,
@@ -389,13 +394,7 @@ class TrackerTest(Fixture):
         names = sorted(p.stem for p in clip.glob("cam*.yaml"))
         cameras = [jgpm.Camera.from_yaml(str(clip / f"{name}.yaml")) for name in names]
         tracker = jgpm.Tracker(jgpm.load_model(self.models["jgpm"]), cameras, seed=2, threads=1, people="all")
-        frames = []
-        for k in range(len(expected)):
-            masks = [cv2.imread(str(clip / "observed" / name / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for name in names]
-            got = tracker.step(masks)
-            self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
-            frames += got
-        self.assertEqual(tracker.finish(), [])
+        frames = self.step_observed_masks(tracker, clip, names, len(expected))
         self.assertEqual(len(frames), len(expected))
         for e, f in zip(frames, expected):
             self.assertEqual((e["frame"], e["born"], e["ended"]), (f["frame"], f["born"], f["ended"]))
