@@ -131,9 +131,13 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
   for (const Camera& c : cameras_)
     min_px = std::max(min_px, static_cast<int>(std::lround(options_.min_birth_share * c.width * c.height)));
   std::vector<PersonSighting> sightings;
+  std::vector<bool> shaped;  // PersonShaped, per sighting
   for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true)) {
-    if (s.found && s.whole && (Clear(s.floor_mm) || PersonShaped(s)) && !Contradicted(s, unexplained.masks))
+    const bool whole_person = PersonShaped(s);
+    if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) && !Contradicted(s, unexplained.masks)) {
       sightings.push_back(s);
+      shaped.push_back(whole_person);
+    }
   }
   // Each sighting continues the candidate it can be (within a walker's reach of where that
   // was last seen), at least total distance; the others are new candidates.
@@ -156,10 +160,10 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
       c.seen.push_back(unexplained.index);
       c.places.push_back(sightings[i].floor_mm);
       c.boxes.push_back(sightings[i].boxes);
-      c.shaped = PersonShaped(sightings[i]);
+      c.shaped = shaped[i];
     } else {
       candidates_.push_back({sightings[i].floor_mm, unexplained.time_s, unexplained.index, {unexplained.index},
-                             {sightings[i].floor_mm}, {sightings[i].boxes}, PersonShaped(sightings[i])});
+                             {sightings[i].floor_mm}, {sightings[i].boxes}, shaped[i]});
     }
   }
   // Forget sightings older than the window; a candidate seen nowhere in it is gone.
