@@ -36,10 +36,12 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   if (!video.background.empty()) spec.backgrounds = {video.background};
   // A live camera is watched for 30 s at 30 fps unless told otherwise.
   spec.max_frames = live && video.max_frames == 0 ? kLiveFrames : video.max_frames;
-  // People far from a surveillance camera are 30-60 px tall with limbs 2-3 px wide: the
-  // tracker's clean-up (an opening of 2 px radius at 480 rows) erases them. Heads and
-  // feet need the whole blob: no opening (specks are dropped by size and shape anyway).
+  // People far from a surveillance camera are 30-60 px tall with limbs 2-3 px wide, and
+  // a head's top or a foot's tip is a pixel or two: the tracker's clean-up (an opening of
+  // 1 px radius) trims them. Heads and feet need the whole blob: no opening (specks are
+  // dropped by size and shape anyway).
   spec.foreground.open_px = 0;
+  spec.foreground.radii_at_240_rows = true;  // its closing, as the calibration was measured
   const std::unique_ptr<FrameSource> source = MakeFrameSource(spec);
   const Camera& camera = source->cameras().front();
   WalkerPointFinder finder(camera.width, camera.height);

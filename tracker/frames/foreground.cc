@@ -211,7 +211,7 @@ cv::Mat ForegroundExtractor::Apply(const cv::Mat& bgr) {
   cv::Mat raw;
   subtractor_->apply(image, raw, options_.learning_rate);
   cv::Mat mask = raw == 255;  // shadows are 127
-  const double scale = height_ / 240.0;
+  const double scale = options_.radii_at_240_rows ? height_ / 240.0 : 1.0;
   for (const auto& [radius, op] : {std::pair{options_.open_px, cv::MORPH_OPEN}, {options_.close_px, cv::MORPH_CLOSE}}) {
     const int r = static_cast<int>(std::lround(radius * scale));
     if (r < 1) continue;

@@ -158,6 +158,33 @@ TEST(Foreground, HoldsUnderClutterAndALightingChange) {
   EXPECT_GT(degraded.mean, without.mean + 0.1);  // the compensation is what holds under the change
 }
 
+// A person 60 px tall in a 640x480 view from above (a surveillance camera's far walker):
+// legs and arms 3 px wide. The clean-up must keep them: an opening scaled with the image
+// (radius 2 at 480 rows) erased them.
+TEST(Foreground, KeepsTheLimbsOfASmallPersonInALargeImage) {
+  cv::Mat background(480, 640, CV_8UC3), frame;
+  cv::randu(background, cv::Scalar(90, 100, 110), cv::Scalar(130, 140, 150));  // a textured floor
+  frame = background.clone();
+  cv::Mat drawn = cv::Mat::zeros(480, 640, CV_8UC1);
+  const cv::Scalar coat(40, 30, 160);
+  cv::circle(drawn, {320, 205}, 4, 255, cv::FILLED);                    // head
+  cv::rectangle(drawn, cv::Rect(315, 210, 11, 22), 255, cv::FILLED);    // torso
+  cv::rectangle(drawn, cv::Rect(315, 232, 3, 28), 255, cv::FILLED);     // legs, 3 px wide
+  cv::rectangle(drawn, cv::Rect(323, 232, 3, 28), 255, cv::FILLED);
+  cv::rectangle(drawn, cv::Rect(311, 212, 3, 18), 255, cv::FILLED);     // arm
+  frame.setTo(coat, drawn);
+  ForegroundExtractor extractor(ForegroundOptions{}, 640, 480);
+  extractor.SetBackground(background);
+  const cv::Mat mask = extractor.Apply(frame);
+  cv::Mat legs = cv::Mat::zeros(480, 640, CV_8UC1);
+  legs(cv::Rect(0, 240, 640, 20)).setTo(255);
+  legs &= drawn;
+  const double kept = cv::countNonZero(mask & legs) / static_cast<double>(cv::countNonZero(legs));
+  EXPECT_GT(kept, 0.8) << "of the legs' pixels";
+  EXPECT_GT(cv::countNonZero(mask & drawn), 0.8 * cv::countNonZero(drawn));
+  EXPECT_LT(cv::countNonZero(mask & ~drawn), 0.1 * cv::countNonZero(drawn));  // and nothing else
+}
+
 TEST(Foreground, RemoveSpecksKeepsEveryBlobButSpecks) {
   cv::Mat mask = cv::Mat::zeros(240, 320, CV_8UC1);
   cv::rectangle(mask, cv::Rect(100, 40, 40, 150), 255, cv::FILLED);  // the body
