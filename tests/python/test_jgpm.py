@@ -356,6 +356,13 @@ class TrackerTest(Fixture):
             got = tracker.step(masks)
             self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
             frames += got
+            for f in got:  # people confirmed now: their estimates in frames returned before
+                for q in f.get("earlier", []):
+                    at = next(e for e in frames if e["frame"] == q["frame"])
+                    at["people"] = sorted(at["people"] + [q], key=lambda p: p["id"])
+                    if q["id"] in f["born"]:
+                        f["born"].remove(q["id"])
+                        at["born"].append(q["id"])
         self.assertEqual(tracker.finish(), [])
         return frames
 

@@ -44,6 +44,7 @@ struct MultiTracker::Person {
   int good = 0;        // of them, tracked at confirm_iou or more
   bool confirmed = false;
   bool reported = false;  // in a frame's people already
+  std::vector<std::pair<int, TrackedFrame>> unreported;  // estimates before confirmation
 };
 
 MultiTracker::MultiTracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& tracker,
@@ -349,9 +350,17 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     }
   }
   for (const auto& p : people_) {
-    if (p->first_frame > frame.index || !p->confirmed) continue;
+    if (p->first_frame > frame.index) continue;
+    if (!p->confirmed) {
+      p->unreported.emplace_back(frame.index, p->last);
+      continue;
+    }
     out.people.push_back({p->id, p->last});
-    if (!p->reported) out.born.push_back(p->id);
+    if (!p->reported) {
+      out.born.push_back(p->id);
+      for (auto& [index, estimate] : p->unreported) out.earlier.push_back({index, {p->id, std::move(estimate)}});
+      p->unreported.clear();
+    }
     p->reported = true;
   }
   // Births, from what nobody explains (frames Start looked at are not looked at again).
@@ -373,6 +382,19 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   return out;
 }
 
+void PlaceEarlier(std::vector<PeopleFrame>* frames) {
+  if (frames->empty()) return;
+  PeopleFrame& now = frames->back();
+  for (const auto& [index, person] : now.earlier) {
+    const auto at = std::find_if(frames->rbegin(), frames->rend(), [&](const PeopleFrame& t) { return t.index == index; });
+    if (at == frames->rend()) continue;
+    if (std::erase(now.born, person.id) > 0) at->born.push_back(person.id);  // the first comes first
+    at->people.insert(std::upper_bound(at->people.begin(), at->people.end(), person.id,
+                                       [](int id, const PersonFrame& p) { return id < p.id; }),
+                      person);
+  }
+}
+
 std::vector<PeopleFrame> TrackPeople(FrameSource* source, MultiTracker* tracker,
                                      const std::function<void(const Frame&, PeopleFrame&)>& on_frame,
                                      const std::function<bool()>& stop) {
@@ -382,6 +404,7 @@ std::vector<PeopleFrame> TrackPeople(FrameSource* source, MultiTracker* tracker,
       [&](const Frame& f) {
         tracked.push_back(tracker->Step(f));
         if (on_frame) on_frame(f, tracked.back());
+        PlaceEarlier(&tracked);
       },
       stop);
   return tracked;

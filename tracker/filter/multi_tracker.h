@@ -116,6 +116,13 @@ struct PeopleFrame {
   std::vector<int> born;            // ids in their first frame reported
   std::vector<int> ended;           // ids that ended at this frame (not in `people`)
   double seconds = 0;               // wall time of the frame's tracking, everyone's
+  // People confirmed at this frame (in `born`): their estimates in the frames before, from
+  // the first they were stepped in, which were not reported then (frame index, estimate).
+  // A live consumer shows people once confirmed; a recording's output (TrackPeople)
+  // puts these in their frames, so that a track begins where the person was first
+  // followed, not confirm_frames later (at the start of a clip every walker's first 2
+  // frames: 6 of the 3-walker crossing's 18.5 misses a run).
+  std::vector<std::pair<int, PersonFrame>> earlier;
 };
 
 class MultiTracker {
@@ -198,8 +205,14 @@ class MultiTracker {
   bool stepped_ = false;
 };
 
+// Puts the last frame's `earlier` estimates into the frames before it in `frames`, each
+// person born at the first of them instead of at the last frame.
+void PlaceEarlier(std::vector<PeopleFrame>* frames);
+
 // Tracks every frame of a source: the first start_frames are looked at to start everyone
-// seen, then tracked like the rest. `on_frame` and `stop` as TrackSource's.
+// seen, then tracked like the rest. `on_frame` and `stop` as TrackSource's; `on_frame`
+// sees each frame as it was tracked, the frames returned also hold each person's
+// estimates from before they were confirmed (PeopleFrame::earlier).
 std::vector<PeopleFrame> TrackPeople(FrameSource* source, MultiTracker* tracker,
                                      const std::function<void(const Frame&, PeopleFrame&)>& on_frame = {},
                                      const std::function<bool()>& stop = {});

@@ -260,8 +260,14 @@ py::dict PeopleDict(const PeopleFrame& f) {
     d["id"] = p.id;
     everyone.append(d);
   }
+  py::list earlier;  // people confirmed now: their estimates in frames already returned
+  for (const auto& [index, p] : f.earlier) {
+    py::dict d = EstimateDict(p.frame);
+    d["id"] = p.id;
+    earlier.append(d);
+  }
   return py::dict(py::arg("frame") = f.index, py::arg("time_s") = f.time_s, py::arg("people") = everyone,
-                  py::arg("born") = f.born, py::arg("ended") = f.ended);
+                  py::arg("born") = f.born, py::arg("ended") = f.ended, py::arg("earlier") = earlier);
 }
 
 // The tracker fed one frame of masks at a time (from any segmenter). Its start looks at the
@@ -363,7 +369,11 @@ struct PyTracker {
       py::gil_scoped_release release;
       if (multi) {
         multi->Start(first);
-        for (const Frame& f : first) everyone.push_back(multi->Step(f));
+        for (const Frame& f : first) {
+          everyone.push_back(multi->Step(f));
+          PlaceEarlier(&everyone);  // these frames are returned together
+          everyone.back().earlier.clear();
+        }
       } else {
         tracker->StartFromFrames(first);
         for (const Frame& f : first) tracked.push_back(tracker->Step(f));
@@ -655,7 +665,8 @@ PYBIND11_MODULE(jgpm, m) {
            "As `jgpm track` with its defaults (threads 0: all cores; the same seed gives the same poses for any "
            "thread count). The model's pose table is read from beside its file, or built and kept there. "
            "people='all' (--people all, at most max_people at once): each frame is {frame, time_s, people, born, "
-           "ended}, each person an estimate with its id.")
+           "ended, earlier}, each person an estimate with its id; earlier: the people born (confirmed) now, their "
+           "estimates in frames returned before (each with its frame), which jgpm track puts in those frames.")
       .def("step", &PyTracker::Step, py::arg("masks"),
            "One frame: a list of masks, one per camera (height x width, nonzero: the person), or None for a frame "
            "not seen. Returns the frames tracked by this call, as dicts (frame, time_s, status, joints_mm: joints "

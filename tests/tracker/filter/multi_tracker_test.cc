@@ -132,6 +132,12 @@ TEST(MultiTracker, TwoWalkersApartAreTwoPeopleWithTheirPoses) {
   const TrackJobResult r = RunTrackJob(Job(clip));
   Print("apart", r);
   ExpectTwoPeople(r, 0.9, 130);
+  // Both in view from the first frame and followed from it: their estimates from before
+  // they were confirmed are in the frames they belong to (PeopleFrame::earlier), and both
+  // are born there.
+  ASSERT_FALSE(r.people.empty());
+  EXPECT_EQ(r.people.front().people.size(), 2u);
+  EXPECT_EQ(r.people.front().born.size(), 2u);
 }
 
 // The same two walkers sent across each other's path at the same moment: still two people,
