@@ -385,7 +385,8 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
 void PlaceEarlier(std::vector<PeopleFrame>* frames) {
   if (frames->empty()) return;
   PeopleFrame& now = frames->back();
-  for (const auto& [index, person] : now.earlier) {
+  for (const auto& [frame_index, person] : now.earlier) {
+    const int index = frame_index;  // (clang 14 cannot capture a structured binding)
     const auto at = std::find_if(frames->rbegin(), frames->rend(), [&](const PeopleFrame& t) { return t.index == index; });
     if (at == frames->rend()) continue;
     if (std::erase(now.born, person.id) > 0) at->born.push_back(person.id);  // the first comes first
