@@ -16,8 +16,8 @@ Prints the share of HOG boxes matched (a recall) and of tracked people on a HOG 
 precision). HOG's boxes are cached beside the run (hog_STEP.json).
 
 Walkers: the kept HOG boxes linked from one scored frame to the next (IoU 0.3, across one
-missed frame at most) are HOG's walkers; those followed for 2 s or more (the issue's "in
-view for 2 s") are counted as tracked when a tracked person is on half or more of their
+missed frame at most) are HOG's walkers; those followed for --walker-s (default 2, the issue's
+"in view for 2 s") are counted as tracked when a tracked person is on half or more of their
 boxes, and the delay from their first box to the first one a tracked person is on is
 reported (birth latency). Missed walkers are listed with their frames and place."""
 import argparse
@@ -64,6 +64,7 @@ def main():
     parser.add_argument("--step", type=int, default=2)
     parser.add_argument("--draw", help="PNG of --frames: HOG red, tracked green with ids")
     parser.add_argument("--frames", default="")
+    parser.add_argument("--walker-s", type=float, default=2, help="walkers followed this long are counted")
     args = parser.parse_args()
 
     cache = os.path.join(args.run, f"hog_{args.step}.json")
@@ -139,10 +140,10 @@ def main():
     if not fps and len(poses["frames"]) > 1:
         f0, f1 = poses["frames"][0], poses["frames"][-1]
         fps = (f1["frame"] - f0["frame"]) / max(f1.get("time_s", 0) - f0.get("time_s", 0), 1e-9)
-    long_walkers = [w for w in walkers if (w[-1][0] - w[0][0]) >= float(os.environ.get("HOG_WALK_S", 2)) * fps]
+    long_walkers = [w for w in walkers if (w[-1][0] - w[0][0]) >= args.walker_s * fps]
     followed = [w for w in long_walkers if 2 * sum(on for _, _, on in w) >= len(w)]
     delays = [next(f for f, _, on in w if on) - w[0][0] for w in long_walkers if any(on for _, _, on in w)]
-    print(f"HOG walkers in view 2 s or more: {len(long_walkers)}, tracked on half their boxes or more: "
+    print(f"HOG walkers in view {args.walker_s:g} s or more: {len(long_walkers)}, tracked on half their boxes or more: "
           f"{len(followed)} ({len(followed) / max(len(long_walkers), 1):.3f}); frames from HOG's first box to the "
           f"first tracked one: median {np.median(delays) if delays else float('nan'):.0f}, "
           f"max {max(delays) if delays else float('nan')}")
