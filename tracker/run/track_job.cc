@@ -1,7 +1,9 @@
 #include "tracker/run/track_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <future>
 #include <map>
 #include <numbers>
@@ -320,6 +322,15 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     return false;
   };
   if (o.people) {
+    struct HeldFrame {
+      Frame frame;
+      std::vector<std::pair<int, TrackedFrame>> people;
+    };
+    std::deque<HeldFrame> held;  // overlays not yet written, oldest first
+    const auto write_held = [&] {
+      overlays->AddPeople(held.front().frame, held.front().people, body_of);
+      held.pop_front();
+    };
     const auto on_people = [&](const Frame& frame, PeopleFrame& f) {
       // The progress line shows the frame as tracked when anyone in it is.
       TrackedFrame summary;
@@ -329,14 +340,27 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
       for (const PersonFrame& p : f.people)
         if (p.frame.status == TrackStatus::kTracked) summary.status = TrackStatus::kTracked;
       on_frame(frame, summary);
-      if (overlays) {
-        std::vector<std::pair<int, TrackedFrame>> people;
-        for (const PersonFrame& p : f.people) people.emplace_back(p.id, p.frame);
-        const std::vector<cv::Mat> shown = overlays->AddPeople(frame, people, body_of, static_cast<bool>(o.show));
-        if (o.show) o.show(shown);
+      if (!overlays) return;
+      std::vector<std::pair<int, TrackedFrame>> people;
+      for (const PersonFrame& p : f.people) people.emplace_back(p.id, p.frame);
+      if (o.show) {  // live: shown now, without the frames before a confirmation
+        o.show(overlays->AddPeople(frame, people, body_of, true));
+        return;
       }
+      // Written birth_window frames late, so that a person confirmed now is drawn in the
+      // frames they were followed in before (PeopleFrame::earlier), as poses.json has them.
+      for (const auto& [index, person] : f.earlier) {
+        const int wanted = index;  // (clang 14 cannot capture a structured binding)
+        const auto at = std::find_if(held.begin(), held.end(), [&](const HeldFrame& h) { return h.frame.index == wanted; });
+        if (at == held.end()) continue;
+        at->people.emplace_back(person.id, person.frame);
+        std::sort(at->people.begin(), at->people.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      }
+      held.push_back({frame, std::move(people)});
+      if (held.size() > static_cast<size_t>(o.multi.birth_window)) write_held();
     };
     result.people = TrackPeople(frames, &*multi, on_people, stop);
+    while (!held.empty()) write_held();
   } else if (o.truth_start) {
     tracker.StartAt(TruthGuess(clip->truth(), *model, tracker.state_model()));
     Frame frame;

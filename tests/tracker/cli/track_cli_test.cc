@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "calibration/camera.h"
@@ -263,6 +264,38 @@ TEST(TrackCli, EveryoneInViewWithPeopleAll) {
   for (const std::string file : {"tracked_1.bvh", "tracked_2.bvh", "overlay_cam0.avi", "overlay_cam1.avi"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
   EXPECT_FALSE(fs::exists(out / "tracked.bvh"));
+}
+
+// From video, the overlays are written as the frames are tracked, yet a person confirmed a
+// few frames after they were first followed is drawn in those frames too, as poses.json
+// lists them (the overlay was written before the confirmation, and frames 0-1 were bare).
+TEST(TrackCli, OverlaysFromVideoDrawPeopleFromTheirFirstFrame) {
+  test::TempDir dir;
+  const fs::path clip = dir.path() / "two";
+  const std::string amc = (test::CmuRoot() / "subjects/07/07_01.amc").string();
+  const Result made = test::RunJgpm("render --amc " + amc + " --amc " + amc + " --walk 0,0,0,0 --walk 0,2000,0,0 --out " +
+                                    clip.string() + " --cameras 2 --max-frames 12 --no-contact-sheet --body-seed 3");
+  ASSERT_EQ(made.status, 0) << made.err;
+  const fs::path out = dir.path() / "out";
+  const Result r = test::RunJgpm("track --model " + Shared().model.string() + " --clip " + clip.string() +
+                                 " --foreground mog2 --out " + out.string() +
+                                 " --particles 60 --layers 3 --threads 2 --people all");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+  ASSERT_FALSE(poses["frames"][0]["people"].empty()) << "nobody placed in frame 0";
+  cv::VideoCapture overlay((out / "overlay_cam0.avi").string()), video((clip / "cam0.avi").string());
+  for (const auto& frame : poses["frames"]) {
+    cv::Mat drawn, image;
+    ASSERT_TRUE(overlay.read(drawn) && video.read(image)) << "frame " << frame["frame"];
+    // Pixels the drawing changed (outlines, skeletons, ids), below the header line; the
+    // two codecs' own differences stay under the threshold.
+    cv::Mat difference;
+    cv::absdiff(drawn, image, difference);
+    cv::cvtColor(difference, difference, cv::COLOR_BGR2GRAY);
+    const int changed = cv::countNonZero(difference.rowRange(30, difference.rows) > 40);
+    if (frame["people"].empty()) continue;
+    EXPECT_GT(changed, 300 * static_cast<int>(frame["people"].size())) << "frame " << frame["frame"];
+  }
 }
 
 TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
