@@ -75,10 +75,10 @@ TEST(BodyModelTest, RegionScalesScaleTheirRegionsPartsOnly) {
       EXPECT_EQ(part.region, BodyRegion::kThighs);
       ++thighs;
     }
-    if (part.name == "ltibia" || part.name == "lfoot") EXPECT_EQ(part.region, BodyRegion::kShins);
-    if (part.name == "head") EXPECT_EQ(part.region, BodyRegion::kHead);
-    if (part.name == "rhand") EXPECT_EQ(part.region, BodyRegion::kArms);
-    if (part.name == "chest") EXPECT_EQ(part.region, BodyRegion::kTorso);
+    if (part.name == "ltibia" || part.name == "lfoot") { EXPECT_EQ(part.region, BodyRegion::kShins); }
+    if (part.name == "head") { EXPECT_EQ(part.region, BodyRegion::kHead); }
+    if (part.name == "rhand") { EXPECT_EQ(part.region, BodyRegion::kArms); }
+    if (part.name == "chest") { EXPECT_EQ(part.region, BodyRegion::kTorso); }
     EXPECT_DOUBLE_EQ(part.radius_from_mm, expected * normal.parts()[i].radius_from_mm) << part.name;
     EXPECT_DOUBLE_EQ(part.radius_to_mm, expected * normal.parts()[i].radius_to_mm) << part.name;
   }

@@ -45,7 +45,7 @@ TEST(IntersectBox, AgreesWithMarchingAlongTheRay) {
     Eigen::Vector3d normal;
     const bool hit = IntersectBox(origin, direction, box, &t, &normal);
     if (first < 0 || Inside(box, origin)) {
-      if (first < 0) EXPECT_FALSE(hit) << trial;
+      if (first < 0) { EXPECT_FALSE(hit) << trial; }
       continue;
     }
     ASSERT_TRUE(hit) << trial;

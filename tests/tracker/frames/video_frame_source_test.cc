@@ -89,7 +89,7 @@ TEST(VideoFrameSource, PairsOnTheRigsClockWhenACamerasVideoStartedLate) {
   for (int k = 0; k < 6; ++k) {
     ASSERT_TRUE(source.Next(&frame));
     EXPECT_EQ(frame.dropped, k < 3) << "frame " << k;
-    if (!frame.dropped) EXPECT_EQ(frame.images[1].at<cv::Vec3b>(0, 0)[0], k - 3) << "frame " << k;
+    if (!frame.dropped) { EXPECT_EQ(frame.images[1].at<cv::Vec3b>(0, 0)[0], k - 3) << "frame " << k; }
   }
   EXPECT_EQ(source.unpaired(), 3);
 }
