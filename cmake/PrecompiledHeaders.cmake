@@ -11,7 +11,7 @@
 # module, benchmarks, fuzzers) compile as before. -DJGPM_PCH=OFF turns it off, which also
 # shows a file that forgot one of these includes.
 #
-#   jgpm_precompile_headers(TEST_DIR)  after every add_subdirectory
+#   jgpm_precompile_headers()  after every add_subdirectory
 set(JGPM_PCH_HEADERS <algorithm> <cmath> <cstdint> <filesystem> <functional> <map> <memory>
     <random> <string> <vector> <Eigen/Core> <Eigen/Geometry> <opencv2/core.hpp>)
 
