@@ -206,6 +206,34 @@ TEST(Foreground, LearnTakesThePerPixelMedian) {
   EXPECT_EQ(extractor.background().at<cv::Vec3b>(1, 1), cv::Vec3b(30, 100, 198));
 }
 
+// Against each pixel's nth_element over the images it counts in: random images and masks,
+// from one image to more than 255.
+TEST(Foreground, MaskedMedianIsEachPixelsMedian) {
+  cv::RNG rng(5);
+  for (const int n : {1, 2, 7, 60, 300}) {
+    std::vector<cv::Mat> images(n), use(n);
+    for (int k = 0; k < n; ++k) {
+      images[k].create(9, 13, CV_8UC3);
+      rng.fill(images[k], cv::RNG::UNIFORM, 0, 256);
+      use[k].create(9, 13, CV_8UC1);
+      rng.fill(use[k], cv::RNG::UNIFORM, 0, 3);  // 0 (left out) a third of the time
+    }
+    use[0].setTo(7);  // every pixel counted somewhere
+    for (const bool masked : {false, true}) {
+      const cv::Mat median = MaskedMedian(images, masked ? use : std::vector<cv::Mat>());
+      for (int p = 0; p < 9 * 13; ++p) {
+        for (int c = 0; c < 3; ++c) {
+          std::vector<uint8_t> values;
+          for (int k = 0; k < n; ++k)
+            if (!masked || use[k].data[p]) values.push_back(images[k].data[3 * p + c]);
+          std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+          ASSERT_EQ(median.data[3 * p + c], values[values.size() / 2]) << n << " images, pixel " << p << " " << masked;
+        }
+      }
+    }
+  }
+}
+
 TEST(Foreground, RefusesBadOptions) {
   ForegroundOptions o;
   o.learning_frames = 0;
