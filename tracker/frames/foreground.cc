@@ -122,10 +122,11 @@ cv::Mat MaskedMedian(const std::vector<cv::Mat>& images, const std::vector<cv::M
     }
     cv::merge(std::vector<cv::Mat>(3, sum), used);
   }
-  cv::Mat median = cv::Mat::zeros(images[0].size(), CV_8UC3), trial, at_least, count, twice, take;
+  cv::Mat median = cv::Mat::zeros(images[0].size(), CV_8UC3), trial, at_least, twice, take;
+  cv::Mat count(images[0].size(), CV_16UC3);
   for (int bit = 128; bit >= 1; bit /= 2) {
     cv::bitwise_or(median, cv::Scalar::all(bit), trial);
-    count = cv::Mat::zeros(images[0].size(), CV_16UC3);
+    count.setTo(0);
     for (int k = 0; k < n; ++k) {
       cv::compare(images[k], trial, at_least, cv::CMP_GE);
       cv::bitwise_and(at_least, cv::Scalar::all(1), at_least);
