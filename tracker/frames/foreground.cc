@@ -161,13 +161,14 @@ void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images, const std::v
   std::vector<cv::Mat> use;
   cv::Mat unseen = cv::Mat::zeros(height_, width_, CV_8UC1);  // never still often enough
   if (!moving.empty()) {
-    cv::Mat still = cv::Mat::zeros(height_, width_, CV_16UC1);
+    cv::Mat still = cv::Mat::zeros(height_, width_, CV_16UC1), one;  // still images per pixel
     use.resize(n);
     for (int k = 0; k < n; ++k) {
       cv::compare(moving[k], 0, use[k], cv::CMP_EQ);
-      cv::add(still, use[k], still, cv::noArray(), CV_16U);  // 255 per still image
+      cv::bitwise_and(use[k], cv::Scalar::all(1), one);
+      cv::add(still, one, still, cv::noArray(), CV_16U);
     }
-    cv::compare(still, 255 * enough, unseen, cv::CMP_LT);
+    cv::compare(still, enough, unseen, cv::CMP_LT);
     for (cv::Mat& u : use) cv::bitwise_or(u, unseen, u);
   }
   cv::Mat median = MaskedMedian(images, use);

@@ -234,6 +234,25 @@ TEST(Foreground, MaskedMedianIsEachPixelsMedian) {
   }
 }
 
+// The scene from many images (learning_frames goes to 10000): a pixel that a walker covers
+// in the first 2600 of 5200 is the scene's in the others (the still images were counted
+// 255 at a time in 16 bits, and past 257 of them every pixel looked never still).
+TEST(Foreground, LearnCountsStillImagesOfAnyNumber) {
+  const int n = 5200;
+  std::vector<cv::Mat> images, moving;
+  for (int k = 0; k < n; ++k) {
+    images.emplace_back(2, 2, CV_8UC3, cv::Scalar(50, 60, 70));
+    moving.push_back(cv::Mat::zeros(2, 2, CV_8UC1));
+    if (k < n / 2) {
+      images.back().at<cv::Vec3b>(0, 0) = cv::Vec3b(200, 200, 200);
+      moving.back().at<uint8_t>(0, 0) = 255;
+    }
+  }
+  ForegroundExtractor extractor(ForegroundOptions{}, 2, 2);
+  extractor.Learn(images, moving);
+  EXPECT_EQ(extractor.background().at<cv::Vec3b>(0, 0), cv::Vec3b(50, 60, 70));
+}
+
 TEST(Foreground, RefusesBadOptions) {
   ForegroundOptions o;
   o.learning_frames = 0;
