@@ -108,20 +108,26 @@ int MovingPersonHeight(const std::vector<cv::Mat>& moving) {
   return std::max(0, tallest[tallest.size() / 2] - static_cast<int>(std::lround(0.08 * moving[0].rows)));
 }
 
+namespace {
+// How many of the masks (CV_8UC1) are non-zero at each pixel, CV_16UC1.
+cv::Mat NonZeroCount(const std::vector<cv::Mat>& masks) {
+  cv::Mat count = cv::Mat::zeros(masks[0].size(), CV_16UC1), one;
+  for (const cv::Mat& mask : masks) {
+    cv::compare(mask, 0, one, cv::CMP_NE);
+    cv::bitwise_and(one, cv::Scalar::all(1), one);
+    cv::add(count, one, count, cv::noArray(), CV_16U);
+  }
+  return count;
+}
+}  // namespace
+
 cv::Mat MaskedMedian(const std::vector<cv::Mat>& images, const std::vector<cv::Mat>& use) {
   const int n = static_cast<int>(images.size());
   // Counts in 16 bits: learning_frames is at most 10000.
   JGPM_CHECK(n > 0 && n <= 30000 && (use.empty() || static_cast<int>(use.size()) == n));
-  cv::Mat used(images[0].size(), CV_16UC3, cv::Scalar::all(n)), one;
-  if (!use.empty()) {
-    cv::Mat sum = cv::Mat::zeros(images[0].size(), CV_16UC1);
-    for (const cv::Mat& u : use) {
-      cv::compare(u, 0, one, cv::CMP_NE);
-      cv::bitwise_and(one, cv::Scalar::all(1), one);
-      cv::add(sum, one, sum, cv::noArray(), CV_16U);
-    }
-    cv::merge(std::vector<cv::Mat>(3, sum), used);
-  }
+  cv::Mat used(images[0].size(), CV_16UC3, cv::Scalar::all(n));
+  if (!use.empty()) cv::merge(std::vector<cv::Mat>(3, NonZeroCount(use)), used);
+  const cv::Mat all;  // an empty mask: every pixel
   cv::Mat median = cv::Mat::zeros(images[0].size(), CV_8UC3), trial, at_least, twice, take;
   cv::Mat count(images[0].size(), CV_16UC3);
   for (int bit = 128; bit >= 1; bit /= 2) {
@@ -130,10 +136,7 @@ cv::Mat MaskedMedian(const std::vector<cv::Mat>& images, const std::vector<cv::M
     for (int k = 0; k < n; ++k) {
       cv::compare(images[k], trial, at_least, cv::CMP_GE);
       cv::bitwise_and(at_least, cv::Scalar::all(1), at_least);
-      if (use.empty())
-        cv::add(count, at_least, count, cv::noArray(), CV_16U);
-      else
-        cv::add(count, at_least, count, use[k], CV_16U);
+      cv::add(count, at_least, count, use.empty() ? all : use[k], CV_16U);
     }
     // At least m - m/2 = ceil(m / 2) of them: twice the count at least m (a sum that
     // saturates is above any m).
@@ -161,14 +164,9 @@ void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images, const std::v
   std::vector<cv::Mat> use;
   cv::Mat unseen = cv::Mat::zeros(height_, width_, CV_8UC1);  // never still often enough
   if (!moving.empty()) {
-    cv::Mat still = cv::Mat::zeros(height_, width_, CV_16UC1), one;  // still images per pixel
     use.resize(n);
-    for (int k = 0; k < n; ++k) {
-      cv::compare(moving[k], 0, use[k], cv::CMP_EQ);
-      cv::bitwise_and(use[k], cv::Scalar::all(1), one);
-      cv::add(still, one, still, cv::noArray(), CV_16U);
-    }
-    cv::compare(still, enough, unseen, cv::CMP_LT);
+    for (int k = 0; k < n; ++k) cv::compare(moving[k], 0, use[k], cv::CMP_EQ);
+    cv::compare(NonZeroCount(use), enough, unseen, cv::CMP_LT);  // still in too few
     for (cv::Mat& u : use) cv::bitwise_or(u, unseen, u);
   }
   cv::Mat median = MaskedMedian(images, use);
