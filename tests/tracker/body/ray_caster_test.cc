@@ -5,6 +5,7 @@
 #include "tracker/body/ray_caster.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -142,6 +143,64 @@ TEST(RayCasterTest, FollowsTheLensDistortion) {
     EXPECT_NEAR(m.m10 / m.m00, pixel.x(), 0.3);
     EXPECT_NEAR(m.m01 / m.m00, pixel.y(), 0.3);
   }
+}
+
+// What Render must give: every pixel's ray tried against every part, nearest hit kept.
+BodyImage EveryPixel(const RayCaster& caster, const std::vector<Capsule>& capsules) {
+  const Camera& camera = caster.camera();
+  BodyImage image;
+  image.part = cv::Mat(camera.height, camera.width, CV_8UC1, cv::Scalar(BodyImage::kNoPart));
+  image.depth_mm = cv::Mat::zeros(camera.height, camera.width, CV_32FC1);
+  image.normal = cv::Mat::zeros(camera.height, camera.width, CV_32FC3);
+  for (int v = 0; v < camera.height; ++v)
+    for (int u = 0; u < camera.width; ++u) {
+      const Eigen::Vector3d ray = caster.rays().col(v * camera.width + u);
+      double nearest = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < capsules.size(); ++i) {
+        double t;
+        Eigen::Vector3d n;
+        if (!IntersectCapsule(caster.centre_in_world_mm(), ray, capsules[i], &t, &n) || t >= nearest) continue;
+        nearest = t;
+        image.part.at<uint8_t>(v, u) = static_cast<uint8_t>(i);
+        image.depth_mm.at<float>(v, u) = static_cast<float>(t);
+        image.normal.at<cv::Vec3f>(v, u) = cv::Vec3f(n.x(), n.y(), n.z());
+      }
+    }
+  return image;
+}
+
+TEST(RayCasterTest, TilesGiveWhatEveryPixelGives) {
+  // Random bodies of 20 parts before a wide distorted webcam, a long lens far away, and a
+  // camera inside a part; image sizes that are not multiples of the tile.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Camera wide = LookAtCamera("wide", 331, 247, 150, {200, 1200, -1500}, {0, 900, 0});
+  wide.distortion = {-0.25, 0.06, 0.001, -0.001, 0};
+  const Camera far = LookAtCamera("far", 200, 150, 900, {3000, 5000, -12000}, {0, 900, 0});
+  const Camera inside = LookAtCamera("inside", 96, 80, 60, {0, 900, 0}, {0, 900, 1000});
+  int drawn = 0;
+  for (const Camera& camera : {wide, far, inside}) {
+    const RayCaster caster(camera);
+    for (int body = 0; body < 4; ++body) {
+      std::vector<Capsule> capsules;
+      for (int i = 0; i < 20; ++i) {
+        Capsule c;
+        c.from_mm = Eigen::Vector3d(600 * u(rng), 900 + 800 * u(rng), 600 * u(rng));
+        c.to_mm = c.from_mm + 300 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        c.radius_from_mm = 60 + 50 * u(rng);
+        c.radius_to_mm = 60 + 50 * u(rng);
+        capsules.push_back(c);
+      }
+      BodyImage tiled;
+      caster.Render(capsules, &tiled);
+      const BodyImage expected = EveryPixel(caster, capsules);
+      drawn += cv::countNonZero(expected.Mask());
+      EXPECT_EQ(cv::norm(tiled.part, expected.part, cv::NORM_INF), 0) << camera.name << " body " << body;
+      EXPECT_EQ(cv::norm(tiled.depth_mm, expected.depth_mm, cv::NORM_INF), 0) << camera.name << " body " << body;
+      EXPECT_EQ(cv::norm(tiled.normal, expected.normal, cv::NORM_INF), 0) << camera.name << " body " << body;
+    }
+  }
+  EXPECT_GT(drawn, 10000);  // the bodies were in view
 }
 
 }  // namespace
