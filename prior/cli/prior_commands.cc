@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <thread>
 
 #include "io/base/error.h"
 #include "io/base/output_batch.h"
@@ -53,6 +54,11 @@ extern "C" void OnInterrupt(int signal) {
   std::signal(signal, SIG_DFL);
 }
 
+// --threads 0: every core (`jgpm` starts OpenBLAS on one, blas_threads.h).
+int ThreadsOrAllCores(int threads) {
+  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 void RunTrain(const TrainArguments& a) {
   TrainingOptions options;
   if (!ParseModelKind(a.model, &options.kind)) {
@@ -61,7 +67,7 @@ void RunTrain(const TrainArguments& a) {
   JGPM_CHECK(ParseLearning(a.learning, &options.learning));  // CLI11 checked the name
   options.inducing = a.inducing;
   options.seed = a.seed;
-  options.threads = a.threads;
+  options.threads = ThreadsOrAllCores(a.threads);
   options.topology_sigma2 = a.sigma2;
   if (a.max_iterations > 0) {  // L-BFGS iterations, or local steps
     options.full.max_iterations = a.max_iterations;
@@ -224,7 +230,7 @@ void RunInducingGap(const InducingGapArguments& a) {
   for (const int m : a.m) ms.push_back(std::min(m, n));
   std::sort(ms.begin(), ms.end());
   ms.erase(std::unique(ms.begin(), ms.end()), ms.end());
-  const LinearAlgebraThreadScope threads(a.threads);
+  const LinearAlgebraThreadScope threads(ThreadsOrAllCores(a.threads));
   const InducingGapReport r = MeasureInducingGap(*model, ms, a.optimise_iterations);
   const std::string kind(ModelKindName(model->kind())), learning(LearningName(model->data().summary.learning));
   std::printf("%s (%s learning), N %d: exact objective %.1f, %.3f s per evaluation with gradient; noise std %.3g\n"
@@ -295,7 +301,7 @@ void AddPriorBenches(CLI::App* bench) {
                        "then optimise the inducing inputs alone (L-BFGS, at most this many iterations per M)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  inducing->add_option("--threads", g->threads, "linear-algebra threads; 0: OpenBLAS's default")
+  inducing->add_option("--threads", g->threads, "linear-algebra threads (0: all cores)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   inducing->add_option("--out", g->out, "folder for inducing_gap.csv and inducing_gap.png")->required();

@@ -10,6 +10,17 @@ namespace jgpm {
 // Threads OpenBLAS uses now.
 int LinearAlgebraThreads();
 
+// One thread unless the user set OPENBLAS_NUM_THREADS or OMP_NUM_THREADS: the `jgpm`
+// command's starting count. Why: OpenBLAS starts a thread per core, and between calls its
+// idle threads spin on sched_yield. Outside training jgpm's matrices are a few hundred
+// wide, too small for a second thread to gain, so the spinning only took the other core:
+// `jgpm eval --suite transitions` on one event took 2.01 s with OpenBLAS's two threads and
+// 1.22 s with one (Release), 27.8 s and 6.5 s under the sanitizers, and several times as
+// long when another process wanted the core. Training, where the kernels are larger, keeps
+// all cores by default (`train --threads`; 5% faster with 2 than 1 on the training split).
+// Not in the Python module: there OpenBLAS may be NumPy's too, and is not ours to set.
+void UseOneLinearAlgebraThreadUnlessSet();
+
 // Sets the OpenBLAS thread count while in scope (0: leave it as it is) and restores the
 // previous one after.
 class LinearAlgebraThreadScope {

@@ -14,12 +14,14 @@
 #include "prior/cli/prior_commands.h"
 #include "prior/cli/transition_commands.h"
 #include "prior/cli/validation_commands.h"
+#include "prior/numerics/blas_threads.h"
 #include "tracker/cli/render_commands.h"
 #include "tracker/cli/track_commands.h"
 #include "tracker/cli/walker_video.h"
 
 int main(int argc, char** argv) {
   jgpm::KeepFreedMemory();  // learning's temporaries are reused, not page-faulted in again
+  jgpm::UseOneLinearAlgebraThreadUnlessSet();  // commands that gain from more ask (train --threads)
   CLI::App app{"jgpm: gait priors (ML-JGPM) from motion capture and 3-D gait tracking in video"};
   app.set_version_flag("--version", "jgpm " JGPM_VERSION);
   app.require_subcommand(1);
