@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <thread>
 
 #include "io/base/error.h"
 #include "io/base/output_batch.h"
@@ -52,11 +51,6 @@ std::atomic<bool> interrupted{false};
 extern "C" void OnInterrupt(int signal) {
   interrupted = true;
   std::signal(signal, SIG_DFL);
-}
-
-// --threads 0: every core (`jgpm` starts OpenBLAS on one, blas_threads.h).
-int ThreadsOrAllCores(int threads) {
-  return threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 void RunTrain(const TrainArguments& a) {

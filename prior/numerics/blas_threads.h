@@ -21,6 +21,10 @@ int LinearAlgebraThreads();
 // Not in the Python module: there OpenBLAS may be NumPy's too, and is not ours to set.
 void UseOneLinearAlgebraThreadUnlessSet();
 
+// Training's count for a `--threads` value: itself, or every core for 0 (what `jgpm train`
+// and Python's train use, so that both factorise alike).
+int ThreadsOrAllCores(int threads);
+
 // Sets the OpenBLAS thread count while in scope (0: leave it as it is) and restores the
 // previous one after.
 class LinearAlgebraThreadScope {

@@ -128,12 +128,11 @@ void RayCaster::Render(const std::vector<Capsule>& capsules, BodyImage* image) c
   image->normal.create(height, width, CV_32FC3);
   // Bounding sphere of each capsule: most rays miss most parts with one test.
   std::vector<Eigen::Vector3d> centre(capsules.size());
-  std::vector<double> radius(capsules.size()), radius2(capsules.size());
+  std::vector<double> radius(capsules.size());
   for (size_t i = 0; i < capsules.size(); ++i) {
     const Capsule& c = capsules[i];
     centre[i] = 0.5 * (c.from_mm + c.to_mm) - centre_;
     radius[i] = 0.5 * (c.to_mm - c.from_mm).norm() + std::max(c.radius_from_mm, c.radius_to_mm);
-    radius2[i] = radius[i] * radius[i];
   }
   cv::parallel_for_(cv::Range(0, tiles_down_), [&](const cv::Range& tile_rows) {
     std::vector<int> near;  // the parts whose bounding spheres meet the tile's cone, in order
@@ -164,7 +163,7 @@ void RayCaster::Render(const std::vector<Capsule>& capsules, BodyImage* image) c
             Eigen::Vector3d nearest_normal = Eigen::Vector3d::Zero();
             for (const int i : near) {
               const double along = centre[i].dot(ray);
-              if (centre[i].squaredNorm() - along * along > radius2[i]) continue;
+              if (centre[i].squaredNorm() - along * along > radius[i] * radius[i]) continue;
               double t;
               Eigen::Vector3d n;
               if (IntersectCapsule(centre_, ray, capsules[i], &t, &n) && t < nearest) {

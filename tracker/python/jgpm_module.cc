@@ -35,6 +35,7 @@
 #include "prior/model/inference.h"
 #include "prior/model/model_kind.h"
 #include "prior/model/train.h"
+#include "prior/numerics/blas_threads.h"
 #include "tracker/filter/multi_tracker.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/run/pose_table_cache.h"
@@ -399,9 +400,9 @@ PyModel Train(const std::string& kind, const std::optional<fs::path>& cycles, co
     throw InputError("train: learning '" + learning + "', expected full, local or sparse");
   }
   options.seed = seed;
-  // Every core, as `jgpm train` (its --threads 0): the same model to the last bit, whatever
-  // this process's OpenBLAS count is.
-  options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // As `jgpm train` (its --threads 0): the same model to the last bit, whatever this
+  // process's OpenBLAS count is.
+  options.threads = ThreadsOrAllCores(0);
   if (max_iterations > 0) {
     options.full.max_iterations = max_iterations;
     options.local.max_steps = max_iterations;
