@@ -40,7 +40,8 @@
 // while nobody stands in front of them (half their drawing under others' in some camera),
 // for death_s in a row ends: a single tracker keeps a person it cannot see
 // predicted for up to two seconds, taking them for hidden, but among several people
-// tracked the ones who could hide them are known. Two people within duplicate_mm of each other on the floor for
+// tracked the ones who could hide them are known (and each tracker, told where the others
+// are drawn, predicts its person while behind them rather than drop them: tracker.h). Two people within duplicate_mm of each other on the floor for
 // duplicate_s in a row (a second: people crossing share a place for a third of one), or
 // duplicate_same_way_s walking the same way, are one person followed twice
 // (two bodies do not stand in one place): the one born later ends.

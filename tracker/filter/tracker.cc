@@ -267,7 +267,7 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   bad_frames_ = 0;
   out_of_view_ = 0;
   last_drawn_.clear();
-  hidden_ = false;
+  hidden_ = behind_ = false;
   start_boxes_.clear();
   last_good_time_s_ = -1e9;  // nothing to hold to until a good frame
 }
@@ -382,9 +382,20 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     // tracked again), or for max_hidden_s at most (then a restart from whoever is seen).
     const PersonSighting& seen = located();
     const double since = frame.time_s - last_good_time_s_;
+    // Hidden behind others while the prediction is drawn under them; no longer, and not
+    // seen where predicted, the person is looked for again as after a loss (near where
+    // they were last explained well): a prediction gone astray behind someone must not
+    // keep them from being found beside it.
+    bool still_behind = true;
+    if (behind_) {
+      TrackedFrame predicted;
+      predicted.state = filter_->Mean();
+      SetEstimate(&predicted);
+      still_behind = Behind(predicted, frame);
+    }
     if (near_prediction(seen)) {
       hidden_ = false;
-    } else if (since >= options_.max_hidden_s) {
+    } else if (since >= options_.max_hidden_s || !still_behind) {
       hidden_ = false;
       started_ = false;
       out.status = TrackStatus::kLost;
@@ -533,9 +544,16 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // left, they are lost, whatever is still seen.
   const bool elsewhere =
       seen.found && frame.time_s - last_good_time_s_ < options_.max_hidden_s && !near_prediction(seen);
-  if (bad_frames_ >= options_.lost_frames && elsewhere && !left) {
+  // Behind the others tracked with them (several people at once): a poor fit is what being
+  // hidden looks like, and the masks, the others' pixels taken out, show nobody there. Not
+  // evidence of loss: predicted, as behind an occluder, until seen again near the
+  // prediction.
+  const bool behind =
+      bad_frames_ > 0 && !left && frame.time_s - last_good_time_s_ < options_.max_hidden_s && Behind(out, frame);
+  if (behind || (bad_frames_ >= options_.lost_frames && elsewhere && !left)) {
     out.status = TrackStatus::kPredicted;
     hidden_ = true;
+    behind_ = behind;
   } else if (nobody || bad_frames_ >= options_.lost_frames || left) {
     out.status = TrackStatus::kLost;
     // Start again from the masks as soon as someone is seen.
@@ -547,6 +565,24 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   finish(&out);
   return out;
+}
+
+bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
+  if (frame.hidden.empty()) return false;
+  std::vector<cv::Mat> drawn(cameras_.size());
+  DrawEstimate(estimate, &drawn);
+  for (size_t c = 0; c < drawn.size() && c < frame.hidden.size(); ++c) {
+    if (drawn[c].empty() || frame.hidden[c].empty() || drawn[c].size() != frame.hidden[c].size()) continue;
+    const int own = cv::countNonZero(drawn[c]);
+    const int under = cv::countNonZero(drawn[c] & frame.hidden[c]);
+    // ...and what is not under them is seen, a third of it at least: someone who has gone
+    // (left through a door, or never there) leaves their drawing's rest on empty floor.
+    const int seen = c < frame.masks.size() && frame.masks[c].size() == drawn[c].size()
+                         ? cv::countNonZero(drawn[c] & frame.masks[c])
+                         : 0;
+    if (own > 0 && 2 * under >= own && 3 * seen >= own - under) return true;
+  }
+  return false;
 }
 
 bool Tracker::InView(const Eigen::Matrix3Xd& joints) const {
