@@ -341,9 +341,13 @@ TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
 // ended, in the 5-walker plaza clip). Without the hidden pixels (nobody known in front),
 // or with the masks empty and the others in front of their legs only (the walker left:
 // nobody on the floor where their upper body would show), the same frames lose them.
+// And when the others have gone from in front of the prediction (frames 12-15 of the
+// last case) while the walker shows 55 px aside (a metre and more from the prediction),
+// they are looked for again as after a loss and tracked there, not kept predicted behind
+// nobody.
 TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
   const Fixture& f = Shared();
-  enum class Case { kBehind, kUnknown, kGone };
+  enum class Case { kBehind, kUnknown, kGone, kOthersGone };
   const auto statuses = [&](Case what) {
     const auto tracker = SharedTracker(100, 3);
     std::vector<Frame> first;
@@ -352,7 +356,14 @@ TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
     std::string line;
     for (int k = 0; k < 16; ++k) {
       Frame frame = ClipFrameAt(f.truth, f.clip, k);
-      if (k >= 8) {
+      if (what == Case::kOthersGone && k >= 12) {
+        for (cv::Mat& mask : frame.masks) {  // nobody in front; the walker 55 px aside
+          cv::Mat moved = cv::Mat::zeros(mask.size(), mask.type());
+          mask(cv::Rect(0, 0, mask.cols - 55, mask.rows)).copyTo(moved(cv::Rect(55, 0, mask.cols - 55, mask.rows)));
+          mask = moved;
+          frame.hidden.push_back(cv::Mat::zeros(mask.size(), CV_8UC1));
+        }
+      } else if (k >= 8) {
         for (cv::Mat& mask : frame.masks) {
           const cv::Rect box = cv::boundingRect(mask);
           // Below the head (below the hips when gone), grown by 4 px.
@@ -366,18 +377,32 @@ TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
           if (what != Case::kUnknown) frame.hidden.push_back(hidden);
         }
       }
-      line += TrackStatusName(tracker->Step(frame).status)[0];
+      const TrackedFrame out = tracker->Step(frame);
+      line += TrackStatusName(out.status)[0];
+      if (k == 15 && what == Case::kOthersGone) {
+        // Where the walker shows now: the truth's root seen 55 px aside in camera 0.
+        const Camera& camera = f.truth.cameras[0];
+        Eigen::Vector2d at, drawn(1e9, 0);
+        EXPECT_TRUE(camera.Project(f.truth.frames[k].joints_mm.col(0), &at));
+        at.x() += 55;
+        if (out.state.size()) camera.Project(out.joints_mm.col(0), &drawn);
+        std::printf("others gone: the root drawn %.0f px from where the walker shows\n", (drawn - at).norm());
+        EXPECT_LT((drawn - at).norm(), 12);
+      }
     }
     return line;
   };
   const std::string behind = statuses(Case::kBehind), unknown = statuses(Case::kUnknown),
-                    gone = statuses(Case::kGone);
-  std::printf("frames 0-15: behind others %s, nobody known in front %s, gone %s\n", behind.c_str(), unknown.c_str(),
-              gone.c_str());
+                    gone = statuses(Case::kGone), others_gone = statuses(Case::kOthersGone);
+  std::printf("frames 0-15: behind others %s, nobody known in front %s, gone %s, others gone at 12 %s\n",
+              behind.c_str(), unknown.c_str(), gone.c_str(), others_gone.c_str());
   EXPECT_EQ(behind.substr(0, 8), std::string(8, 't'));
   EXPECT_EQ(behind.substr(8).find('l'), std::string::npos) << behind;
   EXPECT_NE(unknown.substr(8).find('l'), std::string::npos) << unknown;
   EXPECT_NE(gone.substr(8).find('l'), std::string::npos) << gone;
+  EXPECT_EQ(others_gone.substr(8, 4), behind.substr(8, 4));
+  EXPECT_EQ(others_gone.substr(12, 1), "l") << others_gone;  // behind nobody: looked for again...
+  EXPECT_EQ(others_gone.substr(13), "ttt") << others_gone;   // ...and found where they show
 }
 
 // A second walker in view: the walker's own silhouette in camera 0, drawn a third larger
