@@ -542,15 +542,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // the person is hidden (an occluder, a failed segmentation), and is predicted, not
   // restarted on it, for up to max_hidden_s; hidden in view, not having left it. Having
   // left, they are lost, whatever is still seen.
-  const bool elsewhere =
-      seen.found && frame.time_s - last_good_time_s_ < options_.max_hidden_s && !near_prediction(seen);
+  const bool recent = frame.time_s - last_good_time_s_ < options_.max_hidden_s;
+  const bool elsewhere = seen.found && recent && !near_prediction(seen);
   // Behind the others tracked with them (several people at once): a poor fit is what being
   // hidden looks like, and the masks, the others' pixels taken out, show nobody there. Not
   // evidence of loss: predicted, as behind an occluder, until seen again near the
   // prediction.
-  const bool behind =
-      bad_frames_ > 0 && !left && frame.time_s - last_good_time_s_ < options_.max_hidden_s && Behind(out, frame);
-  if (behind || (bad_frames_ >= options_.lost_frames && elsewhere && !left)) {
+  const bool behind = !left && recent && bad_frames_ > 0 && Behind(out, frame);
+  if (behind || (!left && bad_frames_ >= options_.lost_frames && elsewhere)) {
     out.status = TrackStatus::kPredicted;
     hidden_ = true;
     behind_ = behind;
