@@ -574,12 +574,14 @@ bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
     if (drawn[c].empty() || frame.hidden[c].empty() || drawn[c].size() != frame.hidden[c].size()) continue;
     const int own = cv::countNonZero(drawn[c]);
     const int under = cv::countNonZero(drawn[c] & frame.hidden[c]);
-    // ...and what is not under them is seen, a third of it at least: someone who has gone
-    // (left through a door, or never there) leaves their drawing's rest on empty floor.
+    // ...and under a third of it lies on empty floor (neither under them nor on the mask):
+    // someone who has gone (left through a door, or never there) leaves the rest of their
+    // drawing there. Counted against the whole drawing, not its rest: a prediction wholly
+    // behind someone but for a sliver at the edge (14 of 610 px) is still behind them.
     const int seen = c < frame.masks.size() && frame.masks[c].size() == drawn[c].size()
-                         ? cv::countNonZero(drawn[c] & frame.masks[c])
+                         ? cv::countNonZero(drawn[c] & frame.masks[c] & ~frame.hidden[c])
                          : 0;
-    if (own > 0 && 2 * under >= own && 3 * seen >= own - under) return true;
+    if (own > 0 && 2 * under >= own && 3 * (own - under - seen) < own) return true;
   }
   return false;
 }
