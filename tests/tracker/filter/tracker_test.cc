@@ -293,6 +293,13 @@ TEST(Tracker, SpecksAreNobody) {
   EXPECT_EQ(tracker->Step(specks).status, TrackStatus::kLost);
 }
 
+// The mask moved `px` pixels to the right (what leaves the image is dropped).
+cv::Mat ShiftedRight(const cv::Mat& mask, int px) {
+  cv::Mat moved = cv::Mat::zeros(mask.size(), mask.type());
+  mask(cv::Rect(0, 0, mask.cols - px, mask.rows)).copyTo(moved(cv::Rect(px, 0, mask.cols - px, mask.rows)));
+  return moved;
+}
+
 // The walker hidden for half a second while a walker-sized blob shows up a metre and more
 // away in both views: the person is predicted, not restarted on the blob, and tracked
 // again where they reappear.
@@ -309,9 +316,7 @@ TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
     Frame frame = ClipFrameAt(truth, f.clip, k);
     if (k >= 8 && k < 22) {
       for (cv::Mat& mask : frame.masks) {  // the walker's own silhouette, 55 px aside
-        cv::Mat moved = cv::Mat::zeros(mask.size(), mask.type());
-        mask(cv::Rect(0, 0, mask.cols - 55, mask.rows)).copyTo(moved(cv::Rect(55, 0, mask.cols - 55, mask.rows)));
-        mask = moved;
+        mask = ShiftedRight(mask, 55);
       }
     }
     const TrackedFrame out = tracker->Step(frame);
@@ -361,9 +366,7 @@ TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
       Frame frame = ClipFrameAt(f.truth, f.clip, k);
       if (what == Case::kOthersGone && k >= 12) {
         for (cv::Mat& mask : frame.masks) {  // nobody in front; the walker 55 px aside
-          cv::Mat moved = cv::Mat::zeros(mask.size(), mask.type());
-          mask(cv::Rect(0, 0, mask.cols - 55, mask.rows)).copyTo(moved(cv::Rect(55, 0, mask.cols - 55, mask.rows)));
-          mask = moved;
+          mask = ShiftedRight(mask, 55);
           frame.hidden.push_back(cv::Mat::zeros(mask.size(), CV_8UC1));
         }
       } else if (k >= 8) {
@@ -503,9 +506,7 @@ TEST(Tracker, APersonWhoLeftTheViewGivesWayToSomeoneInIt) {
     if (k >= 10) {
       frame.time_s += 3;
       cv::Mat& mask = frame.masks[0];  // someone else: the walker's silhouette 55 px aside
-      cv::Mat moved = cv::Mat::zeros(mask.size(), mask.type());
-      mask(cv::Rect(0, 0, mask.cols - 55, mask.rows)).copyTo(moved(cv::Rect(55, 0, mask.cols - 55, mask.rows)));
-      mask = moved;
+      mask = ShiftedRight(mask, 55);
     }
     frames.push_back(frame);
   }
