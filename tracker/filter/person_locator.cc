@@ -18,6 +18,10 @@ double Median(std::vector<double> v) {
 // Where a standing adult's head is when the feet cannot be seen (mm): the mean adult
 // height, the person's own unknown.
 constexpr double kAdultHeightMm = 1700;
+// What of a person above someone nearer must show to be taken for one (mm): a head and
+// shoulders, about a fifth of an adult's height (a sliver of the nearer one's own head
+// that their estimate leaves over is placed where they stand, and the births skip it).
+constexpr double kHeadAndShouldersMm = 350;
 
 // The mask's blobs, with the pieces of one body joined: a blob above another, overlapping
 // it by half the narrower one's width, with a gap under a tenth of their joint height
@@ -69,6 +73,7 @@ int BodyBlobs(const cv::Mat& mask, cv::Mat* labels, std::vector<int>* areas, std
 struct BlobEnds {
   double foot_u = 0, foot_v = 0;  // the feet: column, and the lowest row
   double top_u = 0;               // the head: column of the top row
+  double axis = 0;                // the body's axis: median column of the upper half
 };
 
 // The ends of blob `label` in `box`. The body's axis is the median column of the blob's
@@ -109,7 +114,28 @@ BlobEnds FindBlobEnds(const cv::Mat& labels, int label, const cv::Rect& box) {
   ends.foot_u = foot_count > 0 ? foot_u / foot_count : axis;
   ends.foot_v = bottom;
   ends.top_u = top_count > 0 ? top_u / top_count : axis;
+  ends.axis = axis;
   return ends;
+}
+
+// Whether the feet of blob `label` are hidden by someone nearer: at least half of its
+// lowest row's pixels near the body's axis (FindBlobEnds' feet) have a `hidden` pixel (a
+// nearer person's drawing) right below them. Seen from above the floor, a nearer person
+// is drawn lower in the image than a farther one's feet, so a blob resting on someone's
+// drawing is behind them, cut by them, not standing there.
+bool FeetHidden(const cv::Mat& labels, int label, const cv::Rect& box, const BlobEnds& ends, const cv::Mat& hidden) {
+  const int below = static_cast<int>(ends.foot_v) + 1;
+  if (hidden.empty() || hidden.size() != labels.size() || below >= hidden.rows) return false;
+  const double reach = 0.3 * box.height;
+  const int* row = labels.ptr<int>(below - 1);
+  const uchar* under = hidden.ptr<uchar>(below);
+  int feet = 0, on_hidden = 0;
+  for (int u = box.x; u < box.x + box.width; ++u) {
+    if (row[u] != label || std::abs(u - ends.axis) > reach) continue;
+    ++feet;
+    on_hidden += under[u] != 0;
+  }
+  return feet > 0 && 2 * on_hidden >= feet;
 }
 
 // People side by side merged into one blob (walking together, passing one another) split
@@ -204,7 +230,7 @@ std::vector<cv::Rect> CutAcross(const cv::Mat& labels, int label, const cv::Rect
 }  // namespace
 
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
-                                         int min_blob_px, bool split_merged) {
+                                         int min_blob_px, bool split_merged, const std::vector<cv::Mat>& hidden) {
   // Per camera, every blob big enough, with where it stands and how tall it is there.
   struct Candidate {
     int area;
@@ -213,6 +239,7 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     double height;
     bool feet;  // the feet in view (else the place is the adult-height guess)
     bool whole;  // clear of the side edges
+    bool behind;  // the feet hidden by someone nearer (`hidden`), not by the image's edge
   };
   std::vector<std::vector<Candidate>> candidates(cameras.size());
   for (size_t c = 0; c < cameras.size() && c < masks.size(); ++c) {
@@ -228,7 +255,8 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     const auto consider = [&](int l, const cv::Rect& box, int area) -> bool {
       if (area < min_blob_px) return false;
       const BlobEnds ends = FindBlobEnds(labels, l, box);
-      const bool feet_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
+      const bool edge_cut = box.y + box.height >= masks[c].rows;  // at the image's bottom edge
+      const bool feet_cut = edge_cut || FeetHidden(labels, l, box, ends, c < hidden.size() ? hidden[c] : cv::Mat());
       const bool head_cut = box.y <= 0;
       // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
       // back), whose top is not a head.
@@ -253,14 +281,14 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
           if (!(along > 0 && height > 1000 && height < 2300)) return along > 0 && height >= 2300;
         }
       } else {
-        // The feet below the image (a camera near the walk): the person stands where the
-        // top ray is an adult's height above the floor, but no farther than where the
-        // image's bottom edge meets the floor (the feet are below that edge, so nearer).
-        // From a camera at head height the first alone can put a person tens of metres
-        // away.
+        // The feet below the image (a camera near the walk) or behind someone nearer: the
+        // person stands where the top ray is an adult's height above the floor, but no
+        // farther than where the image's bottom edge, or the blob's, meets the floor (the
+        // feet are below it, so nearer). From a camera at head height the first alone can
+        // put a person tens of metres away.
         if (head_cut) return false;
         Eigen::Matrix2Xd edge(2, 1);
-        edge << ends.foot_u, masks[c].rows - 0.5;
+        edge << ends.foot_u, edge_cut ? masks[c].rows - 0.5 : ends.foot_v + 0.5;
         const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);
         const Eigen::Vector2d horizontal_down(down.x(), down.z());
         double reach = std::numeric_limits<double>::infinity();  // horizontal distance
@@ -270,15 +298,17 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
         distance = std::min(distance, reach);
         if (!std::isfinite(distance)) return false;
         // What it shows there must be a standing person's upper body: from the head (at
-        // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not).
+        // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not);
+        // above someone nearer, a head and shoulders (kHeadAndShouldersMm).
         const double top = eye.y() + r.y() * distance / horizontal.norm();
         const double bottom = eye.y() + down.y() * distance / horizontal_down.norm();
-        if (!(top < 2300 && top - bottom >= 800)) return false;
+        if (!(top < 2300 && top - bottom >= (edge_cut ? 800 : kHeadAndShouldersMm))) return false;
         const Eigen::Vector2d along = horizontal.normalized() * distance;
         floor = Eigen::Vector3d(eye.x() + along.x(), 0, eye.z() + along.y());
       }
       candidates[c].push_back(
-          {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut});
+          {area, box, Eigen::Vector2d(floor.x(), floor.z()), side_cut ? 0.0 : height, !feet_cut, !side_cut,
+           feet_cut && !edge_cut});
       return false;
     };
     for (int l = 1; l < n; ++l) {
@@ -299,12 +329,13 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
   }
   // A blob whose feet are seen is better evidence than a guess from a head: when any
   // camera has one, the guesses do not vote (clutter at the image's edge is not a person).
+  // A head above someone nearer is not clutter: it is someone, whoever else is seen.
   bool any_feet = false;
   for (const auto& own : candidates)
     for (const Candidate& q : own) any_feet = any_feet || q.feet;
   if (any_feet) {
     for (auto& own : candidates)
-      own.erase(std::remove_if(own.begin(), own.end(), [](const Candidate& q) { return !q.feet; }), own.end());
+      own.erase(std::remove_if(own.begin(), own.end(), [](const Candidate& q) { return !q.feet && !q.behind; }), own.end());
   }
   // One person at a time, the best evidence first: the candidate place most cameras
   // agree on (a candidate within 1 m), ties going to the larger total blob area, so a
@@ -399,8 +430,8 @@ PersonSighting ChoosePerson(const std::vector<PersonSighting>& people, const Per
 }
 
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks, int min_blob_px,
-                            const PersonPreference& prefer) {
-  PersonSighting sighting = ChoosePerson(LocatePeople(cameras, masks, min_blob_px), prefer);
+                            const PersonPreference& prefer, const std::vector<cv::Mat>& hidden) {
+  PersonSighting sighting = ChoosePerson(LocatePeople(cameras, masks, min_blob_px, false, hidden), prefer);
   sighting.boxes.resize(cameras.size());
   sighting.areas.resize(cameras.size());
   return sighting;

@@ -5,8 +5,11 @@
 // the person's place; the ray through the blob's top, at that place, gives the height. A
 // blob cut by the image's bottom edge (a camera near the walk) stands where its top ray
 // is an adult's 1.7 m above the floor, but no farther than where the bottom edge meets
-// the floor, if it shows at least 0.8 m of a person there, its height unknown; one cut at the top edge has no
-// height either. One cut by a side edge (someone entering or leaving) is a slice, an arm, a
+// the floor, if it shows at least 0.8 m of a person there, its height unknown; so does one
+// resting on a nearer person's drawing (`hidden`: their legs are behind that person), if it
+// shows a head and shoulders (on the plaza clip a walker born behind another was placed
+// 1.2 m too far and 0.77 of their size from their blob's bottom). One cut at the top edge
+// has no height either. One cut by a side edge (someone entering or leaving) is a slice, an arm, a
 // leg or a back, whose top is not a head: its height is unknown, and a person seen only so
 // is not `whole` (on a phone's portrait video an arm alone was placed as an adult 4 m
 // away; the tracker starts only on people wholly in some view, tracker.h). Blobs one above the other with a small gap (an occluder across the body)
@@ -54,8 +57,12 @@ struct PersonSighting {
 // parts of a crossing's blob misled it (the 3-walker crossing clip's MOTA over 4 seeds:
 // 0.893 without splitting, 0.868 splitting everywhere, 0.889 at births and starts only;
 // keeping the parts from the second looks alone gave 0.868).
+// `hidden` (optional, per camera, CV_8UC1 of the mask's size): where people nearer are drawn
+// (several tracked at once); a blob resting on them has its feet hidden, and is placed as
+// one cut by the image's bottom edge is, by its head.
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
-                                         int min_blob_px = 60, bool split_merged = false);
+                                         int min_blob_px = 60, bool split_merged = false,
+                                         const std::vector<cv::Mat>& hidden = {});
 
 // Which one, when several people are seen.
 struct PersonPreference {
@@ -83,6 +90,7 @@ PersonSighting ChoosePerson(const std::vector<PersonSighting>& people, const Per
 
 // The preferred one of LocatePeople.
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
-                            int min_blob_px = 60, const PersonPreference& prefer = {});
+                            int min_blob_px = 60, const PersonPreference& prefer = {},
+                            const std::vector<cv::Mat>& hidden = {});
 
 }  // namespace jgpm

@@ -452,5 +452,56 @@ TEST(PersonLocator, OneStandingBehindAnotherIsTwo) {
   EXPECT_GT(far.floor_mm.y() - near.floor_mm.y(), 700);  // someone else, behind
 }
 
+
+// The same camera; the farther walker 1.5 m behind the nearer, whose drawing (as a tracked
+// person's estimate is) hides their legs: what is left of them rests on it. Told where
+// the nearer one is drawn, the locator places the farther by their head at an adult's
+// height (feet unseen), near where they stand; read from the blob's bottom, as if their
+// feet were there, they would be placed well behind.
+TEST(PersonLocator, FeetHiddenBySomeoneNearerArePlacedByTheHead) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
+  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/07/07_01.amc", skeleton);
+  const Eigen::Matrix3Xd walk = Kinematics(skeleton).Compute(motion.Frame(motion.NumFrames() / 2));
+  const BodyModel body(skeleton, {}, "07.asf");
+  const Camera camera = LookAtCamera("cam0", 320, 240, 500, {0, 6000, -9000}, {0, 900, 1000});
+  std::vector<Capsule> both, near;
+  Eigen::Vector2d far_root;
+  for (const double z : {0.0, 1500.0}) {
+    Eigen::Matrix3Xd joints = walk;
+    joints.row(0).array() -= walk(0, 0);
+    joints.row(2).array() += z - walk(2, 0);
+    far_root = Eigen::Vector2d(joints(0, 0), joints(2, 0));
+    for (const Capsule& c : body.Place(joints)) {
+      both.push_back(c);
+      if (z == 0) near.push_back(c);
+    }
+  }
+  BodyImage image;
+  RayCaster(camera).Render(both, &image);
+  const cv::Mat all = image.Mask();
+  RayCaster(camera).Render(near, &image);
+  const cv::Mat drawn = image.Mask();
+  const cv::Mat left = all & ~drawn;  // what the nearer one's estimate does not explain
+  const std::vector<PersonSighting> told = LocatePeople({camera}, {left}, 60, true, {drawn});
+  const std::vector<PersonSighting> untold = LocatePeople({camera}, {left}, 60, true);
+  ASSERT_EQ(told.size(), 1u);
+  ASSERT_EQ(untold.size(), 1u);
+  std::printf("feet hidden by someone nearer: placed %.0f mm from their root (%.0f mm read from the blob's bottom)\n",
+              (told[0].floor_mm - far_root).norm(), (untold[0].floor_mm - far_root).norm());
+  EXPECT_FALSE(told[0].feet_seen);
+  EXPECT_EQ(told[0].height_mm, 0);  // not measured
+  EXPECT_LT((told[0].floor_mm - far_root).norm(), kOneCameraFloorBoundMm);
+  EXPECT_GT((untold[0].floor_mm - far_root).norm(), kOneCameraFloorBoundMm);
+  // Feet on the floor in front of someone drawn behind them are seen: the nearer walker,
+  // the farther one's drawing hidden (and with it the part of the nearer's head over it),
+  // is placed from their feet as alone.
+  RayCaster(camera).Render(std::vector<Capsule>(both.begin() + near.size(), both.end()), &image);
+  const cv::Mat behind = image.Mask();
+  const std::vector<PersonSighting> front = LocatePeople({camera}, {all & ~behind}, 60, true, {behind});
+  ASSERT_FALSE(front.empty());
+  EXPECT_TRUE(front[0].feet_seen);
+  EXPECT_LT((front[0].floor_mm - LocatePeople({camera}, {drawn}, 60, true)[0].floor_mm).norm(), 100);
+}
+
 }  // namespace
 }  // namespace jgpm
