@@ -71,6 +71,8 @@ class AnnealedFilter {
   // Adds `offset` to one coordinate of every particle, or of every `every`-th one (then
   // normalises them).
   void Shift(int dimension, double offset, int every = 1);
+  // Sets one coordinate of every particle to `value`.
+  void Set(int dimension, double value) { particles_.col(dimension).setConstant(value); }
   // Moves every `every`-th particle's place on the floor to about `floor_mm` (normal, `std_mm`
   // each way), the rest of its state kept: a second look where the masks say the person
   // is, which the annealing then keeps or drops. `frame` keys the random numbers.

@@ -133,7 +133,7 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
     min_px = std::max(min_px, static_cast<int>(std::lround(options_.min_birth_share * c.width * c.height)));
   std::vector<PersonSighting> sightings;
   std::vector<bool> shaped;  // PersonShaped, per sighting
-  for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true)) {
+  for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true, unexplained.hidden)) {
     const bool whole_person = PersonShaped(s);
     if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) && !Contradicted(s, unexplained.masks)) {
       sightings.push_back(s);
@@ -374,6 +374,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
       unexplained.masks.push_back(frame.masks[c].clone());
       if (c < explained.size()) unexplained.masks.back().setTo(0, explained[c]);
     }
+    unexplained.hidden = explained;  // a new person's feet may be behind someone tracked
     recent_.push_back(unexplained);
     while (static_cast<int>(recent_.size()) > tracker_options_.start_frames) recent_.pop_front();
     Look(recent_.back(), false);

@@ -15,7 +15,10 @@
 //
 // Birth. What no tracked person explains (the masks less everyone's drawings, grown by
 // explained_grow of the image height) is searched for people as a single tracker's start
-// does (person_locator.h: a blob standing on the floor, 1-2.3 m tall, wholly in some view);
+// does (person_locator.h: a blob standing on the floor, 1-2.3 m tall, wholly in some view;
+// one resting on someone's drawing is behind them, placed by the head: the plaza's walker
+// born behind another was placed 1.2 m too far, 0.77 of their size, from their blob's
+// bottom, and tracked 24 frames before the masks set them right);
 // a place seen in birth_frames of the last birth_window frames, always within a walker's
 // reach of where it was seen before (birth_speed_mm_s), farther than birth_clear_mm from
 // everyone tracked or a whole person's shape (its height read, its blob at least

@@ -167,7 +167,7 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   std::vector<double> times;
   for (const Frame& f : frames) {
     if (f.dropped) continue;
-    people.push_back(LocatePeople(cameras_, f.masks, 60, options_.split_merged_starts));
+    people.push_back(LocatePeople(cameras_, f.masks, 60, options_.split_merged_starts, f.hidden));
     times.push_back(f.time_s - frames.front().time_s);
   }
   // The person followed from a first sighting: in each frame the one nearest where they
@@ -236,7 +236,9 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   guess->floor_std_mm = feet ? 120 : 400;
   if (options_.known_size) {
     guess->size = 1, guess->size_std = 0;
-  } else if (!heights.empty()) {
+  } else if (heights.empty()) {
+    guess->size_seen = false;
+  } else {
     std::sort(heights.begin(), heights.end());
     guess->size = std::clamp(heights[heights.size() / 2] / model_height_mm_, 0.8, 1.25);
     guess->size_std = 0.04;
@@ -268,6 +270,7 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   out_of_view_ = 0;
   last_drawn_.clear();
   hidden_ = behind_ = false;
+  held_size_ = 0;
   start_boxes_.clear();
   last_good_time_s_ = -1e9;  // nothing to hold to until a good frame
 }
@@ -278,6 +281,8 @@ bool Tracker::StartFromFrames(const std::vector<Frame>& frames, bool at_last) {
   if (!Guess(frames, &guess, next_choice_, &boxes, at_last)) return false;
   StartAt(guess, at_last ? frames.back().index : frames.front().index);
   start_boxes_ = boxes;  // where to look at the start: the person's blobs then
+  const bool among_others = !frames.empty() && !frames.back().hidden.empty();
+  held_size_ = !guess.size_seen && among_others && !options_.known_size ? guess.size : 0;
   return true;
 }
 
@@ -361,7 +366,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // Where the masks alone put the person: looked for once a frame, when first needed.
   std::optional<PersonSighting> sighting;
   const auto located = [&]() -> const PersonSighting& {
-    if (!sighting) sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm));
+    if (!sighting)
+      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), frame.hidden);
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
@@ -430,6 +436,11 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       observations[c] = likelihood_.Observe(alignment_.Apply(c, frame.masks[c]), regions[c], hidden);
     }
   });
+  if (held_size_ > 0 && !frame.dropped) {
+    const PersonSighting& seen = located();
+    if (seen.found && seen.feet_seen && near_prediction(seen)) held_size_ = 0;
+    else filter_->Set(state_model_->placement().size, held_size_);
+  }
   const AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (fresh_) {
     mirror_evidence_ = 0;

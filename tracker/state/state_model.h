@@ -36,6 +36,7 @@ struct InitialGuess {
   double heading_std_rad = 3.2;  // >= pi: any heading
   double size = 1;
   double size_std = 0.05;
+  bool size_seen = true;  // false: no height was measured (the feet or the head unseen)
   double width = 1;
   double width_std = 0.06;
   double speed_mm_s = -1;  // walking speed seen at the start; < 0: unknown

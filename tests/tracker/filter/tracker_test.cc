@@ -414,6 +414,76 @@ TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
   EXPECT_EQ(others_gone.substr(13), "ttt") << others_gone;   // ...and found where they show
 }
 
+// One camera 6 m up, 9 m back, looking down on the walk (as over a plaza); someone tracked
+// with the walker stands in front of their legs from the first frame to frame 15 (several
+// people at once: the masks lose those pixels and the frames mark them hidden, as
+// MultiTracker's births and restarts see them). The start places the walker by the head
+// at an adult's height (person_locator.h) and, their height unmeasured, holds their size
+// at that guess while the feet stay hidden: tracked within 300 mm of the truth all along
+// (measured: 54-203 mm), the size within 3% of the guess. Not told what hides the legs,
+// the start reads the thighs' cut as the feet and places the walker 523 mm away, and the
+// track stays 450-560 mm off while they are hidden. (From the default ring's cameras, near
+// a head's height, an adult's height places nobody well: 3.9 m off; 6.5 m not told.)
+TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
+  const Fixture& f = Shared();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const ClipFrame& t : f.truth.frames) centre += t.joints_mm.col(0) / f.truth.frames.size();
+  const Camera above = LookAtCamera("cam0", 320, 240, 500, {centre.x(), 6000, centre.z() - 9000},
+                                    {centre.x(), 900, centre.z()});
+  test::TempDir dir;
+  {
+    const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
+                               (test::CmuRoot() / "subjects/07/07_01.amc").string()};
+    const Skeleton skeleton = ReadAsf(source.asf);
+    ClipOptions clip;
+    clip.max_frames = kFrames;
+    clip.contact_sheet = false;
+    RenderClip(skeleton, ReadAmc(source.amc, skeleton), source, {above}, clip, (dir.path() / "clip").string());
+  }
+  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
+  const auto run = [&](bool told, std::vector<double>* size) {
+    TrackerOptions options;
+    options.annealing.particles = 100;
+    options.annealing.seed = 3;
+    Tracker tracker(*f.loaded, truth.cameras, options);
+    std::vector<Frame> frames;
+    for (int k = 0; k < kFrames; ++k) {
+      frames.push_back(ClipFrameAt(truth, dir.path() / "clip", k));
+      if (k > 15) continue;
+      for (cv::Mat& mask : frames.back().masks) {
+        const cv::Rect box = cv::boundingRect(mask);
+        const int top = box.y + box.height * 3 / 5;  // the thighs and below, grown by 4 px
+        const cv::Rect front =
+            cv::Rect(box.x - 4, top, box.width + 8, box.y + box.height + 4 - top) & cv::Rect(0, 0, mask.cols, mask.rows);
+        cv::Mat hidden = cv::Mat::zeros(mask.size(), CV_8UC1);
+        hidden(front).setTo(255);
+        mask.setTo(0, hidden);
+        if (told) frames.back().hidden.push_back(hidden);
+      }
+    }
+    EXPECT_TRUE(tracker.StartFromFrames(std::vector<Frame>(frames.begin(), frames.begin() + 5)));
+    std::vector<double> error;
+    for (const Frame& frame : frames) {
+      const TrackedFrame out = tracker.Step(frame);
+      const Eigen::Vector3d d = out.state.size() ? Eigen::Vector3d(out.joints_mm.col(0) - truth.frames[out.index].joints_mm.col(0))
+                                                 : Eigen::Vector3d::Constant(1e9);
+      error.push_back(std::hypot(d.x(), d.z()));
+      if (size) size->push_back(out.size);
+    }
+    return error;
+  };
+  std::vector<double> size;
+  const std::vector<double> told = run(true, &size), untold = run(false, nullptr);
+  const double worst = *std::max_element(told.begin(), told.end());
+  std::printf("legs hidden by others (frames 0-15): root error at most %.0f mm, size %.3f-%.3f while hidden; not "
+              "told: %.0f mm at the first frame\n",
+              worst, *std::min_element(size.begin(), size.begin() + 16), *std::max_element(size.begin(), size.begin() + 16),
+              untold.front());
+  EXPECT_LT(worst, 300);
+  for (int k = 0; k <= 15; ++k) EXPECT_NEAR(size[k], 1.0, 0.03) << k;
+  EXPECT_GT(untold.front(), 400);
+}
+
 // A second walker in view: the walker's own silhouette in camera 0, drawn a third larger
 // (nearer the camera, so the strongest evidence) and `offset(k)` px aside at frame k.
 // One camera, so the copy is a person standing somewhere else on the floor.
