@@ -300,6 +300,19 @@ cv::Mat ShiftedRight(const cv::Mat& mask, int px) {
   return moved;
 }
 
+// Someone in front of the walker from row `top` of their blob down: the mask loses their
+// blob's box from there, grown by 4 px (as another's drawing would cover it), and the
+// hidden pixels are returned (Frame::hidden).
+cv::Mat HideFrom(cv::Mat* mask, int top) {
+  const cv::Rect box = cv::boundingRect(*mask);
+  const cv::Rect front =
+      cv::Rect(box.x - 4, top, box.width + 8, box.y + box.height + 4 - top) & cv::Rect(0, 0, mask->cols, mask->rows);
+  cv::Mat hidden = cv::Mat::zeros(mask->size(), CV_8UC1);
+  hidden(front).setTo(255);
+  mask->setTo(0, hidden);
+  return hidden;
+}
+
 // The walker hidden for half a second while a walker-sized blob shows up a metre and more
 // away in both views: the person is predicted, not restarted on the blob, and tracked
 // again where they reappear.
@@ -372,13 +385,9 @@ TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
       } else if (k >= 8) {
         for (cv::Mat& mask : frame.masks) {
           const cv::Rect box = cv::boundingRect(mask);
-          // Below the head (below the hips when gone, the crown when wholly), grown by 4 px.
+          // Below the head (below the hips when gone, the crown when wholly).
           const int top = what == Case::kWhollyBehind ? box.y + 3 : box.y + box.height / (what == Case::kGone ? 2 : 6);
-          const cv::Rect front = cv::Rect(box.x - 4, top, box.width + 8, box.y + box.height + 4 - top) &
-                                 cv::Rect(0, 0, mask.cols, mask.rows);
-          cv::Mat hidden = cv::Mat::zeros(mask.size(), CV_8UC1);
-          hidden(front).setTo(255);
-          mask.setTo(0, hidden);
+          const cv::Mat hidden = HideFrom(&mask, top);
           if (what == Case::kGone || what == Case::kWhollyBehind) mask.setTo(0);
           if (what != Case::kUnknown) frame.hidden.push_back(hidden);
         }
@@ -452,12 +461,7 @@ TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
       if (k > 15) continue;
       for (cv::Mat& mask : frames.back().masks) {
         const cv::Rect box = cv::boundingRect(mask);
-        const int top = box.y + box.height * 3 / 5;  // the thighs and below, grown by 4 px
-        const cv::Rect front =
-            cv::Rect(box.x - 4, top, box.width + 8, box.y + box.height + 4 - top) & cv::Rect(0, 0, mask.cols, mask.rows);
-        cv::Mat hidden = cv::Mat::zeros(mask.size(), CV_8UC1);
-        hidden(front).setTo(255);
-        mask.setTo(0, hidden);
+        const cv::Mat hidden = HideFrom(&mask, box.y + box.height * 3 / 5);  // the thighs and below
         if (told) frames.back().hidden.push_back(hidden);
       }
     }
