@@ -9,13 +9,14 @@
 // resting on a nearer person's drawing (`hidden`: their legs are behind that person), if it
 // shows a head and shoulders (on the plaza clip a walker born behind another was placed
 // 1.2 m too far and 0.77 of their size from their blob's bottom). One cut at the top edge
-// has no height either. One cut by a side edge (someone entering or leaving) is a slice, an arm, a
-// leg or a back, whose top is not a head: its height is unknown, and a person seen only so
-// is not `whole` (on a phone's portrait video an arm alone was placed as an adult 4 m
-// away; the tracker starts only on people wholly in some view, tracker.h). Blobs one above the other with a small gap (an occluder across the body)
-// are one person; when asked, one blob with two heads side by side at its top (people
-// walking together) is two, split between the heads, and one too tall for a person (one
-// behind another, seen from above) is cut across (person_locator.cc).
+// has no height either. One cut by a side edge (someone entering or leaving) is a slice,
+// an arm, a leg or a back, whose top is not a head: its height is unknown, and a person
+// seen only so is not `whole` (on a phone's portrait video an arm alone was placed as an
+// adult 4 m away; the tracker starts only on people wholly in some view, tracker.h). Blobs
+// one above the other with a small gap (an occluder across the body) are one person; when
+// asked, one blob with two heads side by side at its top (people walking together) is two,
+// split between the heads, and one too tall for a person (one behind another, seen from
+// above) is cut across (person_locator.cc).
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
 // clutter in the air is) are passed over; with several cameras the place that most cameras'
 // blobs agree on (within 1 m) is taken, and the answer is the median of those blobs.

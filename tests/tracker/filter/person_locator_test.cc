@@ -416,28 +416,50 @@ TEST(PersonLocator, TwoPeopleSideBySideInOneBlobAreTwo) {
   EXPECT_EQ(two, views);
 }
 
+// Two walkers in the middle of subject 07's walk, one `behind_mm` behind the other, seen
+// by a camera 6 m up and 9 m back looking down on them (as over a plaza): each one's
+// capsules and root (x, z).
+struct OneBehindAnother {
+  Camera camera = LookAtCamera("cam0", 320, 240, 500, {0, 6000, -9000}, {0, 900, 1000});
+  std::vector<Capsule> near, far;
+  Eigen::Vector2d near_root, far_root;
+  std::vector<Capsule> Both() const {
+    std::vector<Capsule> both = near;
+    both.insert(both.end(), far.begin(), far.end());
+    return both;
+  }
+};
+OneBehindAnother PlaceOneBehindAnother(double behind_mm) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
+  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/07/07_01.amc", skeleton);
+  const Eigen::Matrix3Xd walk = Kinematics(skeleton).Compute(motion.Frame(motion.NumFrames() / 2));
+  const BodyModel body(skeleton, {}, "07.asf");
+  OneBehindAnother scene;
+  for (const double z : {0.0, behind_mm}) {
+    Eigen::Matrix3Xd joints = walk;
+    joints.row(0).array() -= walk(0, 0);
+    joints.row(2).array() += z - walk(2, 0);
+    (z == 0 ? scene.near_root : scene.far_root) = Eigen::Vector2d(joints(0, 0), joints(2, 0));
+    (z == 0 ? scene.near : scene.far) = body.Place(joints);
+  }
+  return scene;
+}
+
+cv::Mat Render(const Camera& camera, const std::vector<Capsule>& capsules) {
+  BodyImage image;
+  RayCaster(camera).Render(capsules, &image);
+  return image.Mask();
+}
+
 // A camera 6 m up looking down on a plaza: one walker stands 2.5 m behind another, their
 // legs hidden by the nearer one's head and shoulders, the two one tall blob. It is too
 // tall for one person, so it is cut across at its narrowest row: two people, the nearer
 // where they stand, the farther behind them.
 TEST(PersonLocator, OneStandingBehindAnotherIsTwo) {
-  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
-  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/07/07_01.amc", skeleton);
-  const Eigen::Matrix3Xd walk = Kinematics(skeleton).Compute(motion.Frame(motion.NumFrames() / 2));
-  const BodyModel body(skeleton, {}, "07.asf");
-  const Camera camera = LookAtCamera("cam0", 320, 240, 500, {0, 6000, -9000}, {0, 900, 1000});
-  std::vector<Capsule> both;
-  std::vector<Eigen::Vector2d> roots;
-  for (const double z : {0.0, 2500.0}) {
-    Eigen::Matrix3Xd joints = walk;
-    joints.row(0).array() -= walk(0, 0);
-    joints.row(2).array() += z - walk(2, 0);
-    roots.emplace_back(joints(0, 0), joints(2, 0));
-    for (const Capsule& c : body.Place(joints)) both.push_back(c);
-  }
-  BodyImage image;
-  RayCaster(camera).Render(both, &image);
-  const cv::Mat mask = image.Mask();
+  const OneBehindAnother s = PlaceOneBehindAnother(2500);
+  const Camera& camera = s.camera;
+  const std::vector<Eigen::Vector2d> roots = {s.near_root, s.far_root};
+  const cv::Mat mask = Render(camera, s.Both());
   cv::Mat labels;
   ASSERT_EQ(cv::connectedComponents(mask, labels), 2) << "one blob";
   EXPECT_TRUE(LocatePeople({camera}, {mask}).empty());  // not asked to cut
@@ -452,35 +474,17 @@ TEST(PersonLocator, OneStandingBehindAnotherIsTwo) {
   EXPECT_GT(far.floor_mm.y() - near.floor_mm.y(), 700);  // someone else, behind
 }
 
-
 // The same camera; the farther walker 1.5 m behind the nearer, whose drawing (as a tracked
 // person's estimate is) hides their legs: what is left of them rests on it. Told where
 // the nearer one is drawn, the locator places the farther by their head at an adult's
 // height (feet unseen), near where they stand; read from the blob's bottom, as if their
 // feet were there, they would be placed well behind.
 TEST(PersonLocator, FeetHiddenBySomeoneNearerArePlacedByTheHead) {
-  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
-  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/07/07_01.amc", skeleton);
-  const Eigen::Matrix3Xd walk = Kinematics(skeleton).Compute(motion.Frame(motion.NumFrames() / 2));
-  const BodyModel body(skeleton, {}, "07.asf");
-  const Camera camera = LookAtCamera("cam0", 320, 240, 500, {0, 6000, -9000}, {0, 900, 1000});
-  std::vector<Capsule> both, near;
-  Eigen::Vector2d far_root;
-  for (const double z : {0.0, 1500.0}) {
-    Eigen::Matrix3Xd joints = walk;
-    joints.row(0).array() -= walk(0, 0);
-    joints.row(2).array() += z - walk(2, 0);
-    far_root = Eigen::Vector2d(joints(0, 0), joints(2, 0));
-    for (const Capsule& c : body.Place(joints)) {
-      both.push_back(c);
-      if (z == 0) near.push_back(c);
-    }
-  }
-  BodyImage image;
-  RayCaster(camera).Render(both, &image);
-  const cv::Mat all = image.Mask();
-  RayCaster(camera).Render(near, &image);
-  const cv::Mat drawn = image.Mask();
+  const OneBehindAnother s = PlaceOneBehindAnother(1500);
+  const Camera& camera = s.camera;
+  const Eigen::Vector2d& far_root = s.far_root;
+  const cv::Mat all = Render(camera, s.Both());
+  const cv::Mat drawn = Render(camera, s.near);
   const cv::Mat left = all & ~drawn;  // what the nearer one's estimate does not explain
   const std::vector<PersonSighting> told = LocatePeople({camera}, {left}, 60, true, {drawn});
   const std::vector<PersonSighting> untold = LocatePeople({camera}, {left}, 60, true);
@@ -495,8 +499,7 @@ TEST(PersonLocator, FeetHiddenBySomeoneNearerArePlacedByTheHead) {
   // Feet on the floor in front of someone drawn behind them are seen: the nearer walker,
   // the farther one's drawing hidden (and with it the part of the nearer's head over it),
   // is placed from their feet as alone.
-  RayCaster(camera).Render(std::vector<Capsule>(both.begin() + near.size(), both.end()), &image);
-  const cv::Mat behind = image.Mask();
+  const cv::Mat behind = Render(camera, s.far);
   const std::vector<PersonSighting> front = LocatePeople({camera}, {all & ~behind}, 60, true, {behind});
   ASSERT_FALSE(front.empty());
   EXPECT_TRUE(front[0].feet_seen);
