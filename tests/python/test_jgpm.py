@@ -320,6 +320,9 @@ class TrackVideoTest(Fixture):
         with self.assertRaises(jgpm.InputError) as caught:
             jgpm.track_video(self.models["jgpm"], videos, yamls[:1])
         self.assertIn("--camera", str(caught.exception))
+        with self.assertRaises(jgpm.InputError) as caught:
+            jgpm.track_video(self.models["jgpm"], videos, yamls, occluders=[yamls[0]])
+        self.assertIn("--occluders", str(caught.exception))
 
 
     def test_everyone_in_view_with_people_all(self):

@@ -41,6 +41,7 @@ struct TrackArguments {
   int threads = 0;
   bool calibrate_from_walkers = false;
   bool full_resolution = false;
+  bool no_clip_occluders = false;
   double person_height_m = 1.70;
   double max_clock_offset_s = 2;
   double calibration_seconds = 30;
@@ -127,6 +128,7 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.shape.enabled = !a.no_body_shape;
   a.job.working.enabled = !a.full_resolution;
+  a.job.source.clip_occluders = !a.no_clip_occluders;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
   if (a.calibrate_from_walkers) {
@@ -416,6 +418,12 @@ void AddTrackCommands(CLI::App& app) {
                     "(keep out of view meanwhile)")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
+  track->add_option("--occluders", a->job.source.occluders,
+                    "painting of the static objects in front of where people walk, per camera (repeat; PNG of the "
+                    "camera's size, 255 where an object is; tracker/frames/occluder_masks.h)")
+      ->check(CLI::ExistingFile);
+  track->add_flag("--no-occluders", a->no_clip_occluders,
+                  "leave out a clip's own paintings of its occluders (occluders/CAMERA.png)");
   track->add_flag("--full-resolution", a->full_resolution,
                   "track at the input's resolution (default: people taller than 200 px are brought to 200 px, "
                   "tracker/frames/working_resolution.h)");

@@ -40,6 +40,9 @@ struct ClipPaths {
   std::filesystem::path CameraYaml(const std::string& camera) const { return folder / (camera + ".yaml"); }
   std::filesystem::path Video(const std::string& camera) const { return folder / (camera + ".avi"); }
   std::filesystem::path Background(const std::string& camera) const { return folder / "background" / (camera + ".png"); }
+  // The static occluders in front of the walkers, as a user would paint them (255 where
+  // one is); written when the scene has occluders.
+  std::filesystem::path Occluders(const std::string& camera) const { return folder / "occluders" / (camera + ".png"); }
   std::filesystem::path MaskFolder(const std::string& camera) const { return folder / "masks" / camera; }
   std::filesystem::path ObservedFolder(const std::string& camera) const { return folder / "observed" / camera; }
   std::filesystem::path Mask(const std::string& camera, int frame) const;

@@ -94,6 +94,24 @@ void WriteImage(const fs::path& path, const cv::Mat& image) {
   if (!cv::imwrite(path.string(), image)) ThrowInputError(path.string(), "cannot write the image");
 }
 
+// What a user would paint as occluders in front of the walk: each object in the image
+// (a connected region of objects_depth) that hid some walker in some frame, whole. Objects
+// seen only behind the walkers (another camera's pillar) are left out, as a user would.
+cv::Mat PaintedOccluders(const cv::Mat& objects_depth, const cv::Mat& hid_by_objects) {
+  const cv::Mat objects = objects_depth < std::numeric_limits<float>::infinity();
+  cv::Mat labels;
+  const int count = cv::connectedComponents(objects, labels, 8, CV_32S);
+  std::vector<uint8_t> keep(count, 0);
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u)
+      if (hid_by_objects.at<uint8_t>(v, u)) keep[labels.at<int>(v, u)] = 255;
+  keep[0] = 0;
+  cv::Mat painted(objects.size(), CV_8UC1);
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u) painted.at<uint8_t>(v, u) = keep[labels.at<int>(v, u)];
+  return painted;
+}
+
 // The walker's silhouette with the skeleton over it, cropped about him and enlarged to
 // 160 x 240 (at 320 x 240 he is often under 100 px tall). The crop is an affine map of
 // the image, so the camera of the tile is the same camera with scaled intrinsics.
@@ -448,6 +466,7 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
     cv::Mat colour(camera.height, camera.width, CV_32FC3), noise(camera.height, camera.width, CV_32FC3);
     cv::Mat frame8, clutter_mask(camera.height, camera.width, CV_8UC1), passer_mask(camera.height, camera.width, CV_8UC1);
     cv::Mat shadow, shadowed;
+    cv::Mat hid_by_objects = cv::Mat::zeros(camera.height, camera.width, CV_8UC1);
     cv::RNG cv_rng(options.seed * 7919 + c);
     for (int k = 0; k < frames; ++k) {
       clutter.Step();  // blobs move on through dropped frames
@@ -477,6 +496,7 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
       caster.Render(capsules, &image);
       // What can be seen of the walkers: not what an occluder or a passer hides.
       passers.Draw(&passer_mask);
+      if (!scene.objects().empty()) hid_by_objects |= image.depth_mm > objects_depth;  // no body: depth 0
       const cv::Mat hidden = (image.depth_mm > objects_depth) | (passer_mask != 0);
       image.part.setTo(BodyImage::kNoPart, hidden);
       const cv::Mat mask = image.Mask();
@@ -526,6 +546,10 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
       if (progress) progress(++done, total);
     }
     video.release();
+    if (!scene.objects().empty()) {
+      fs::create_directories(files.Occluders(camera.name).parent_path());
+      WriteImage(files.Occluders(camera.name), PaintedOccluders(objects_depth, hid_by_objects));
+    }
   }
   if (options.contact_sheet && !sheet_frames.empty()) {
     std::vector<cv::Mat> tiles;

@@ -13,6 +13,17 @@
 #include "tracker/filter/assignment.h"
 
 namespace jgpm {
+namespace {
+
+// What may hide a person: the others' drawings and the frame's own hidden pixels (the
+// static occluders painted for its cameras, tracker/frames/occluder_masks.h).
+std::vector<cv::Mat> WithFrameHidden(std::vector<cv::Mat> drawn, const Frame& frame) {
+  for (size_t c = 0; c < drawn.size() && c < frame.hidden.size(); ++c)
+    if (!frame.hidden[c].empty() && frame.hidden[c].size() == drawn[c].size()) drawn[c] |= frame.hidden[c];
+  return drawn;
+}
+
+}  // namespace
 
 bool MultiTrackerOptions::Check(std::string* why) const {
   const auto fail = [why](const char* text) {
@@ -291,7 +302,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   for (Person* p : order) {
     Frame mine = frame;
     if (!frame.dropped) {
-      mine.hidden = Drawn(p->id, options_.hidden_grow_px);
+      mine.hidden = WithFrameHidden(Drawn(p->id, options_.hidden_grow_px), frame);
       for (size_t c = 0; c < mine.masks.size() && c < mine.hidden.size(); ++c) {
         mine.masks[c] = frame.masks[c].clone();
         mine.masks[c].setTo(0, mine.hidden[c]);
@@ -374,7 +385,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
       unexplained.masks.push_back(frame.masks[c].clone());
       if (c < explained.size()) unexplained.masks.back().setTo(0, explained[c]);
     }
-    unexplained.hidden = explained;  // a new person's feet may be behind someone tracked
+    unexplained.hidden = WithFrameHidden(explained, frame);  // a new person's feet may be behind someone tracked
     recent_.push_back(unexplained);
     while (static_cast<int>(recent_.size()) > tracker_options_.start_frames) recent_.pop_front();
     Look(recent_.back(), false);

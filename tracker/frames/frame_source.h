@@ -25,9 +25,10 @@ struct Frame {
   std::chrono::steady_clock::time_point ready;  // ...which was then
   std::vector<cv::Mat> masks;   // per camera: CV_8UC1, 255 = foreground
   std::vector<cv::Mat> images;  // per camera: BGR, or empty when the source has none
-  // Per camera, or none: CV_8UC1, 255 where other people being tracked are drawn (several
-  // people at once): pixels this person's likelihood neither needs explained nor forbids
-  // (tracker/filter/observation.h). Sources leave it empty.
+  // Per camera, or none: CV_8UC1, 255 where the person may be hidden: static occluders
+  // the user painted (occluder_masks.h) and, several people at once, where other people
+  // being tracked are drawn. Pixels this person's likelihood neither needs explained nor
+  // forbids (tracker/filter/observation.h). Sources leave it empty.
   std::vector<cv::Mat> hidden;
 };
 

@@ -1,6 +1,7 @@
 #include "tracker/frames/frame_source_factory.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <future>
 
 #include "io/base/error.h"
@@ -8,6 +9,7 @@
 #include "io/video/v4l2_camera.h"
 #include "io/video/video_file.h"
 #include "tracker/frames/clip_source.h"
+#include "tracker/frames/occluder_masks.h"
 #include "tracker/frames/video_frame_source.h"
 
 namespace jgpm {
@@ -111,6 +113,33 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
   options.max_frames = spec.max_frames;
   options.person_px = spec.mask_person_px;
   return std::make_unique<VideoFrameSource>(std::move(sources), std::move(cameras), options);
+}
+
+std::vector<cv::Mat> OccluderPaintings(const FrameSourceSpec& spec, const std::vector<Camera>& cameras) {
+  std::vector<cv::Mat> paintings;
+  if (!spec.clip.empty()) {
+    if (!spec.occluders.empty()) {
+      ThrowInputError("--occluders", "a clip brings its own paintings (occluders/); --no-occluders leaves them out");
+    }
+    if (!spec.clip_occluders) return paintings;
+    const ClipPaths paths{spec.clip};
+    bool any = false;
+    for (const Camera& camera : cameras) {
+      const std::filesystem::path path = paths.Occluders(camera.name);
+      const bool has = std::filesystem::exists(path);
+      paintings.push_back(has ? ReadOccluderMask(path.string(), camera) : cv::Mat());
+      any = any || has;
+    }
+    if (!any) paintings.clear();
+    return paintings;
+  }
+  if (spec.occluders.empty()) return paintings;
+  if (spec.occluders.size() != cameras.size()) {
+    ThrowInputError("--occluders", std::to_string(spec.occluders.size()) + " paintings for " +
+                                       std::to_string(cameras.size()) + " cameras: give one per camera, in order");
+  }
+  for (size_t c = 0; c < cameras.size(); ++c) paintings.push_back(ReadOccluderMask(spec.occluders[c], cameras[c]));
+  return paintings;
 }
 
 }  // namespace jgpm

@@ -39,6 +39,10 @@ struct FrameSourceSpec {
   std::vector<std::string> backgrounds;
   double mask_person_px = 0;  // VideoFrameSourceOptions::person_px: a learnt background's
                               // masks made at the working resolution
+  // Static occluders (occluder_masks.h): a painting per camera; a clip has its own
+  // (occluders/, when its scene has any), used unless `clip_occluders` is off.
+  std::vector<std::string> occluders;
+  bool clip_occluders = true;
   // Live camera.
   int device_width = 640, device_height = 480;
   double device_fps = 30;
@@ -52,5 +56,11 @@ struct FrameSourceSpec {
 // a video without a camera YAML (the message says how to make one), cameras that do not
 // match their sources.
 std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec);
+
+// The paintings of static occluders for the source's cameras (`--occluders`, or the
+// clip's own), one per camera, or none at all. InputError naming the option or file: a
+// count that is not the cameras', paintings given to a clip, a painting unreadable or of
+// another size than its camera's images.
+std::vector<cv::Mat> OccluderPaintings(const FrameSourceSpec& spec, const std::vector<Camera>& cameras);
 
 }  // namespace jgpm

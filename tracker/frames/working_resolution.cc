@@ -31,6 +31,13 @@ cv::Mat ScaleMask(const cv::Mat& mask, cv::Size size) {
   return area >= 128;
 }
 
+cv::Mat ScaleHidden(const cv::Mat& hidden, cv::Size size) {
+  if (hidden.empty() || hidden.size() == size) return hidden;
+  cv::Mat area;
+  cv::resize(hidden, area, size, 0, 0, cv::INTER_AREA);
+  return area > 0;
+}
+
 namespace {
 
 // The tallest blob of a mask, px (0 when empty). Specks were removed by the source.
@@ -74,6 +81,9 @@ void WorkingResolutionSource::Scale(Frame* frame) const {
   for (size_t c = 0; c < frame->masks.size() && c < scaled_.size(); ++c) {
     if (!frame->masks[c].empty()) {
       frame->masks[c] = ScaleMask(frame->masks[c], cv::Size(scaled_[c].width, scaled_[c].height));
+    }
+    if (c < frame->hidden.size()) {
+      frame->hidden[c] = ScaleHidden(frame->hidden[c], cv::Size(scaled_[c].width, scaled_[c].height));
     }
   }
 }

@@ -43,6 +43,9 @@ Camera ScaleCamera(const Camera& camera, double s);
 // A binary mask (0 / 255) brought to `size` by pixel area, a pixel on when at least half
 // of it was.
 cv::Mat ScaleMask(const cv::Mat& mask, cv::Size size);
+// A hidden mask (frame_source.h) brought to `size`: a pixel is hidden when any of it was
+// (an occluder's edge kept, not halved away).
+cv::Mat ScaleHidden(const cv::Mat& hidden, cv::Size size);
 
 class WorkingResolutionSource : public FrameSource {
  public:

@@ -68,7 +68,8 @@ def infer(model: Model, poses: _Array, observed: Optional[list[bool]] = None, ad
 def calibrate_from_walkers(takes: list[list[str]], person_height_m: float = 1.70, backgrounds: list[str] = [],
                            intrinsics: list[str] = [], max_clock_offset_s: float = 2.0) -> list[Camera]: ...
 def track_video(model: _Path, videos: list[str], cameras: list[str], out: Optional[str] = None,
-                backgrounds: list[str] = [], seed: int = 1, threads: int = 0, people: str = "one") -> dict: ...
+                backgrounds: list[str] = [], seed: int = 1, threads: int = 0, people: str = "one",
+                occluders: list[str] = []) -> dict: ...
 
 class Camera:
     """A calibrated camera (OpenCV's pinhole model, world in millimetres)."""

@@ -446,7 +446,7 @@ PyModel Train(const std::string& kind, const std::optional<fs::path>& cycles, co
 // given, working resolution, overlays when `out` is given).
 py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& videos, const std::vector<std::string>& cameras,
                     const std::optional<std::string>& out, const std::vector<std::string>& backgrounds, uint64_t seed,
-                    int threads, const std::string& people) {
+                    int threads, const std::string& people, const std::vector<std::string>& occluders) {
   if (people != "one" && people != "all") ThrowInputError("people='" + people + "'", "expected 'one' or 'all'");
   TrackJobOptions o;
   o.people = people == "all";
@@ -454,6 +454,7 @@ py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& video
   o.source.videos = videos;
   o.source.camera_yamls = cameras;
   o.source.backgrounds = backgrounds;
+  o.source.occluders = occluders;
   if (out) o.out = *out;
   o.tracker.annealing.seed = seed;
   o.tracker.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
@@ -618,9 +619,10 @@ PYBIND11_MODULE(jgpm, m) {
       "jgpm.InputError with the command's one-line refusal when the walkers do not determine a camera.");
   m.def("track_video", &TrackVideo, py::arg("model"), py::arg("videos"), py::arg("cameras"),
         py::arg("out") = std::nullopt, py::arg("backgrounds") = std::vector<std::string>(), py::arg("seed") = 1,
-        py::arg("threads") = 0, py::arg("people") = "one",
+        py::arg("threads") = 0, py::arg("people") = "one", py::arg("occluders") = std::vector<std::string>(),
         "`jgpm track --video ... --camera ...` as a call (one video and one camera YAML per camera; background "
-        "learnt unless backgrounds= are given; outputs written to out= when given): a dict of frames (as "
+        "learnt unless backgrounds= are given; occluders=: a painting of the static objects in front of the walk "
+        "per camera; outputs written to out= when given): a dict of frames (as "
         "Tracker.step gives them), tracking_seconds, wall_seconds and written files. people='all' (--people all): "
         "each frame is {frame, time_s, people, born, ended}, each person an estimate with its id.");
   m.def(

@@ -25,6 +25,7 @@
 #include "prior/model/inference.h"
 #include "prior/model/model_file.h"
 #include "tracker/frames/clip_source.h"
+#include "tracker/frames/occluder_masks.h"
 #include "tracker/frames/prefetch_source.h"
 #include "tracker/frames/video_frame_source.h"
 #include "tracker/run/overlay_videos.h"
@@ -224,6 +225,8 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   const auto* video = dynamic_cast<const VideoFrameSource*>(made.get());
   if (o.truth_start && !clip) ThrowInputError("--init truth", "needs a clip's ground truth (--clip)");
   if (o.truth_start && o.people) ThrowInputError("--init truth", "starts one person; --people all finds everyone");
+  std::vector<cv::Mat> paintings = OccluderPaintings(o.source, made->cameras());
+  if (!paintings.empty()) made = std::make_unique<OccludedSource>(std::move(made), std::move(paintings));
   const auto source = std::make_unique<WorkingResolutionSource>(std::move(made), o.working, video && video->live());
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);

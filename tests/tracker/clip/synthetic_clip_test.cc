@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <fstream>
 #include <random>
@@ -397,6 +398,33 @@ TEST(SyntheticClipTest, OccludersHideTheWalkerAndTheShadowDarkensTheFloor) {
   EXPECT_GT(hidden, 100);
   EXPECT_GT(shadow_px, 500);
   EXPECT_GT(darker / std::max(1, shadow_px), 20);
+
+  // The occluders as a user would paint them (occluders/CAMERA.png): only objects (where
+  // the room's picture differs from the plain clip's: the same seed, the same noise), and
+  // every walker pixel an object hid is painted. The plain clip has no painting.
+  int painted = 0;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "plain/occluders"));
+  const ClipPaths scene_paths{dir.path() / "scene"};
+  for (const char* camera : {"cam0", "cam1"}) {
+    const cv::Mat room = cv::imread((dir.path() / "scene/background" / (std::string(camera) + ".png")).string());
+    const cv::Mat plain_room = cv::imread((dir.path() / "plain/background" / (std::string(camera) + ".png")).string());
+    cv::Mat differ;
+    cv::absdiff(room, plain_room, differ);
+    cv::transform(differ, differ, cv::Matx13f(1, 1, 1));
+    const cv::Mat objects = differ > 0;
+    const bool has = std::filesystem::exists(scene_paths.Occluders(camera));
+    const cv::Mat painting = has ? cv::imread(scene_paths.Occluders(camera).string(), cv::IMREAD_GRAYSCALE)
+                                 : cv::Mat::zeros(room.size(), CV_8UC1);
+    ASSERT_EQ(painting.size(), room.size());
+    EXPECT_EQ(cv::countNonZero(painting & ~objects), 0) << camera;
+    painted += cv::countNonZero(painting);
+    for (int k = 0; k < 40; ++k) {
+      const cv::Mat by_objects = ReadMask(dir.path() / "plain", "masks", camera, k) &
+                                 ~ReadMask(dir.path() / "scene", "masks", camera, k) & objects;
+      EXPECT_EQ(cv::countNonZero(by_objects & ~painting), 0) << camera << " " << k;
+    }
+  }
+  EXPECT_GT(painted, 0);
 }
 
 // With calibration error the clip's YAMLs (and its ground truth's cameras, the tracker's)
