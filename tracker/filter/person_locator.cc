@@ -22,6 +22,10 @@ constexpr double kAdultHeightMm = 1700;
 // shoulders, about a fifth of an adult's height (a sliver of the nearer one's own head
 // that their estimate leaves over is placed where they stand, and the births skip it).
 constexpr double kHeadAndShouldersMm = 350;
+// Adults' heights spread about kAdultHeightMm by this much either way (about one standard
+// deviation of men and women together): from a camera near head height it is most of what
+// the head says about the distance.
+constexpr double kAdultSpreadMm = 100;
 
 // The mask's blobs, with the pieces of one body joined: a blob above another, overlapping
 // it by half the narrower one's width, with a gap under a tenth of their joint height
@@ -136,6 +140,58 @@ bool FeetHidden(const cv::Mat& labels, int label, const cv::Rect& box, const Blo
     on_hidden += under[u] != 0;
   }
   return feet > 0 && 2 * on_hidden >= feet;
+}
+
+// Whether blob `label` is cut at a side by `hidden` pixels: on at least half of its rows
+// its leftmost or its rightmost pixel (the same side throughout) has a hidden pixel within
+// 2 px beside it. The part of someone beside a painted pillar or behind another person's
+// side is a slice, as one cut by the image's side edge is (tuning clip 35_28: a leg
+// coming out from behind a pillar was taken for a whole walker 4.2 m away, size 0.76).
+bool SideHidden(const cv::Mat& labels, int label, const cv::Rect& box, const cv::Mat& hidden) {
+  if (hidden.empty() || hidden.size() != labels.size()) return false;
+  constexpr int kReach = 2;
+  int rows = 0, left = 0, right = 0;
+  for (int v = box.y; v < box.y + box.height; ++v) {
+    const int* row = labels.ptr<int>(v);
+    const uchar* beside = hidden.ptr<uchar>(v);
+    int first = -1, last = -1;
+    for (int u = box.x; u < box.x + box.width; ++u) {
+      if (row[u] != label) continue;
+      if (first < 0) first = u;
+      last = u;
+    }
+    if (first < 0) continue;
+    ++rows;
+    for (int d = 1; d <= kReach; ++d) {
+      if (first - d >= 0 && beside[first - d]) {
+        ++left;
+        break;
+      }
+    }
+    for (int d = 1; d <= kReach; ++d) {
+      if (last + d < hidden.cols && beside[last + d]) {
+        ++right;
+        break;
+      }
+    }
+  }
+  return rows > 0 && 2 * std::max(left, right) >= rows;
+}
+
+// How near the feet of a blob whose feet are hidden (FeetHidden) can be: where the floor
+// meets the lower edge of the hidden run below the feet, in the feet's column (the feet
+// lower in the image would show). 0 when the run reaches the image's bottom or the ray
+// does not meet the floor.
+double HiddenRunNear(const Camera& camera, const cv::Mat& hidden, const BlobEnds& ends, const Eigen::Vector3d& eye) {
+  const int u = std::clamp(static_cast<int>(std::lround(ends.foot_u)), 0, hidden.cols - 1);
+  int v = static_cast<int>(ends.foot_v) + 1;
+  while (v < hidden.rows && hidden.at<uchar>(v, u)) ++v;
+  if (v >= hidden.rows) return 0;
+  Eigen::Matrix2Xd edge(2, 1);
+  edge << ends.foot_u, v - 0.5;
+  const Eigen::Vector3d ray = camera.PixelRaysInWorld(edge).col(0);
+  if (!(ray.y() < -1e-6)) return 0;
+  return Eigen::Vector2d(ray.x(), ray.z()).norm() * (-eye.y() / ray.y());
 }
 
 // People side by side merged into one blob (walking together, passing one another) split
@@ -259,8 +315,10 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
       const bool feet_cut = edge_cut || FeetHidden(labels, l, box, ends, c < hidden.size() ? hidden[c] : cv::Mat());
       const bool head_cut = box.y <= 0;
       // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
-      // back), whose top is not a head.
-      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
+      // back), whose top is not a head; or by hidden pixels at its side (someone coming
+      // out from behind a pillar).
+      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols ||
+                            SideHidden(labels, l, box, c < hidden.size() ? hidden[c] : cv::Mat());
       Eigen::Matrix2Xd pixels(2, 2);
       pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
       const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
@@ -296,6 +354,22 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
         const double t = std::abs(r.y()) > 1e-6 ? (kAdultHeightMm - eye.y()) / r.y() : -1;
         double distance = t > 0 ? horizontal.norm() * t : reach;
         distance = std::min(distance, reach);
+        if (!edge_cut) {
+          // Hidden by something whose lower edge shows: the feet are on the floor between
+          // the blob's bottom and that edge, and the head at an adult's height give or take
+          // kAdultSpreadMm. Where both hold, the middle; else the feet's bound nearest.
+          const double near = HiddenRunNear(cameras[c], hidden[c], ends, eye);
+          double lo = 0, hi = std::numeric_limits<double>::infinity();
+          if (std::abs(r.y()) > 1e-9) {
+            const double d1 = (kAdultHeightMm - kAdultSpreadMm - eye.y()) / r.y() * horizontal.norm();
+            const double d2 = (kAdultHeightMm + kAdultSpreadMm - eye.y()) / r.y() * horizontal.norm();
+            lo = std::max(0.0, std::min(d1, d2));
+            hi = std::max(d1, d2);
+          }
+          const double from = std::max(lo, near), to = std::min(hi, reach);
+          if (from <= to && std::isfinite(to)) distance = 0.5 * (from + to);
+          else if (hi < near) distance = near;
+        }
         if (!std::isfinite(distance)) return false;
         // What it shows there must be a standing person's upper body: from the head (at
         // most 2.3 m up) down at least 0.8 m to the image's edge (a ball or a bag is not);
