@@ -13,10 +13,11 @@
 // (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there.
 // With several people in view one is chosen (TrackerOptions::person) and kept: every later
 // look at the masks asks for the person nearest where the dynamics put them.
-// Among several people, a start or restart on someone whose feet are behind someone
-// tracked (Frame::hidden; person_locator.h places them by the head at an adult's height)
-// measures no height: their size is held at that adult guess until the masks show their
-// feet near the estimate (and a second look moves nobody onto such a head's place).
+// A start or restart on someone whose feet are behind someone tracked or a painted
+// occluder (Frame::hidden; person_locator.h places them by the head at an adult's height
+// and the hidden run below them) measures no height: their size is held at that adult
+// guess until the masks show their feet near the estimate (and a second look moves nobody
+// onto such a head's place).
 // Free, the size grew (1.03 -> 1.10 in 40 frames) and the body slid along the head's line
 // of sight, a larger body nearer the camera explaining the head as well, 0.5-0.9 m from
 // the walker; their neighbours' tracks then swapped with them. 5-walker plaza, 4 seeds,
