@@ -142,42 +142,6 @@ bool FeetHidden(const cv::Mat& labels, int label, const cv::Rect& box, const Blo
   return feet > 0 && 2 * on_hidden >= feet;
 }
 
-// Whether blob `label` is cut at a side by `hidden` pixels: on at least half of its rows
-// its leftmost or its rightmost pixel (the same side throughout) has a hidden pixel within
-// 2 px beside it. The part of someone beside a painted pillar or behind another person's
-// side is a slice, as one cut by the image's side edge is (tuning clip 35_28: a leg
-// coming out from behind a pillar was taken for a whole walker 4.2 m away, size 0.76).
-bool SideHidden(const cv::Mat& labels, int label, const cv::Rect& box, const cv::Mat& hidden) {
-  if (hidden.empty() || hidden.size() != labels.size()) return false;
-  constexpr int kReach = 2;
-  int rows = 0, left = 0, right = 0;
-  for (int v = box.y; v < box.y + box.height; ++v) {
-    const int* row = labels.ptr<int>(v);
-    const uchar* beside = hidden.ptr<uchar>(v);
-    int first = -1, last = -1;
-    for (int u = box.x; u < box.x + box.width; ++u) {
-      if (row[u] != label) continue;
-      if (first < 0) first = u;
-      last = u;
-    }
-    if (first < 0) continue;
-    ++rows;
-    for (int d = 1; d <= kReach; ++d) {
-      if (first - d >= 0 && beside[first - d]) {
-        ++left;
-        break;
-      }
-    }
-    for (int d = 1; d <= kReach; ++d) {
-      if (last + d < hidden.cols && beside[last + d]) {
-        ++right;
-        break;
-      }
-    }
-  }
-  return rows > 0 && 2 * std::max(left, right) >= rows;
-}
-
 // How near the feet of a blob whose feet are hidden (FeetHidden) can be: where the floor
 // meets the lower edge of the hidden run below the feet, in the feet's column (the feet
 // lower in the image would show). 0 when the run reaches the image's bottom or the ray
@@ -315,10 +279,8 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
       const bool feet_cut = edge_cut || FeetHidden(labels, l, box, ends, c < hidden.size() ? hidden[c] : cv::Mat());
       const bool head_cut = box.y <= 0;
       // Cut by a side edge: a slice of someone entering or leaving (an arm, a leg, the
-      // back), whose top is not a head; or by hidden pixels at its side (someone coming
-      // out from behind a pillar).
-      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols ||
-                            SideHidden(labels, l, box, c < hidden.size() ? hidden[c] : cv::Mat());
+      // back), whose top is not a head.
+      const bool side_cut = box.x <= 0 || box.x + box.width >= masks[c].cols;
       Eigen::Matrix2Xd pixels(2, 2);
       pixels << ends.foot_u, ends.top_u, ends.foot_v + 0.5, box.y - 0.5;
       const Eigen::Matrix3Xd rays = cameras[c].PixelRaysInWorld(pixels);
