@@ -13,8 +13,10 @@
 // run below it ends (lower, they would show), and its head at 1.7 +- 0.1 m: it is placed
 // in the middle of where both hold. From a camera near head height the head alone says
 // little (behind a table, subject 35 seen from 1.5 m up: 2.1-6.2 m away by the head,
-// 3.9-6.4 m by the table; the middle 160 mm from the truth, the head at 1.7 m 740 mm;
-// tests/tracker/filter/person_locator_test has a 1.6 m walker). One cut at the top edge
+// 3.9-6.4 m by the table; the middle 160 mm from the truth, the head at 1.7 m 740 mm).
+// The middle errs towards the far side for a short walker (a 1.65 m one in the locator's
+// test: 1133 mm off, the head alone 856), the head alone nearer for a tall one (1.85 m:
+// 2697 mm, in front of the table; the middle 622). One cut at the top edge
 // has no height either. One cut by a side edge (someone entering or leaving) is a slice,
 // an arm, a leg or a back, whose top is not a head: its height is unknown, and a person
 // seen only so is not `whole` (on a phone's portrait video an arm alone was placed as an
