@@ -496,8 +496,9 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
       caster.Render(capsules, &image);
       // What can be seen of the walkers: not what an occluder or a passer hides.
       passers.Draw(&passer_mask);
-      if (!scene.objects().empty()) hid_by_objects |= image.depth_mm > objects_depth;  // no body: depth 0
-      const cv::Mat hidden = (image.depth_mm > objects_depth) | (passer_mask != 0);
+      const cv::Mat behind_objects = image.depth_mm > objects_depth;  // no body: depth 0, never behind
+      if (!scene.objects().empty()) hid_by_objects |= behind_objects;
+      const cv::Mat hidden = behind_objects | (passer_mask != 0);
       image.part.setTo(BodyImage::kNoPart, hidden);
       const cv::Mat mask = image.Mask();
       for (int v = 0; v < image.part.rows; ++v) {
