@@ -15,14 +15,16 @@ cv::Mat ReadOccluderMask(const std::string& path, const Camera& camera) {
                               camera.name + "'s images are " + std::to_string(camera.width) + "x" +
                               std::to_string(camera.height));
   }
-  cv::Mat grey = image;
-  if (image.channels() > 1) {
-    std::vector<cv::Mat> channels;
-    cv::split(image, channels);
-    grey = channels[0].clone();
-    for (size_t i = 1; i < channels.size(); ++i) cv::max(grey, channels[i], grey);
-  }
-  return grey != 0;
+  std::vector<cv::Mat> channels;
+  cv::split(image, channels);
+  // An alpha channel (grey + alpha, or BGRA: what paint programs export) is not paint: a
+  // transparent pixel is unpainted whatever colour it stores.
+  const bool alpha = channels.size() == 2 || channels.size() == 4;
+  const size_t colours = alpha ? channels.size() - 1 : channels.size();
+  cv::Mat painted = channels[0] != 0;
+  for (size_t i = 1; i < colours; ++i) painted |= channels[i] != 0;
+  if (alpha) painted &= channels.back() != 0;
+  return painted;
 }
 
 OccludedSource::OccludedSource(std::unique_ptr<FrameSource> inner, std::vector<cv::Mat> paintings)

@@ -28,7 +28,8 @@
 
 namespace jgpm {
 
-// The painting at `path` for `camera`: CV_8UC1, 255 where any channel is non-zero.
+// The painting at `path` for `camera`: CV_8UC1, 255 where any colour channel is non-zero
+// (and the alpha channel, when there is one).
 // InputError naming the file: unreadable, or not of the camera's image size.
 cv::Mat ReadOccluderMask(const std::string& path, const Camera& camera);
 

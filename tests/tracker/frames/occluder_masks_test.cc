@@ -1,5 +1,5 @@
 // Painted static occluders against hand-made answers: a painting is read as it was painted
-// (any colour channel), refused with the file named when it is not the camera's size, and
+// (any colour channel; an alpha channel is not paint), refused with the file named when it is not the camera's size, and
 // handed to every frame as its hidden pixels at the masks' size, a pixel hidden when the
 // painting covers any part of it; the factory gives one painting per camera or refuses.
 #include "tracker/frames/occluder_masks.h"
@@ -56,6 +56,16 @@ TEST(OccluderMasks, APaintingIsReadFromAnyChannelAndMustBeTheCamerasSize) {
   EXPECT_EQ(painted.at<uchar>(100, 260), 255);
   EXPECT_EQ(painted.at<uchar>(100, 100), 0);
   test::ExpectInputError([&] { ReadOccluderMask(path, Cam("cam0", 640, 480)); }, {path, "320x240", "640x480"});
+  // Exported with an alpha channel: opaque black is unpainted, and so is a transparent
+  // pixel whatever colour it keeps (it was all painted: alpha read as a colour).
+  cv::Mat bgra(240, 320, CV_8UC4, cv::Scalar(0, 0, 0, 255));
+  bgra(cv::Rect(10, 200, 100, 40)).setTo(cv::Scalar(0, 0, 90, 255));
+  bgra(cv::Rect(200, 0, 50, 50)).setTo(cv::Scalar(40, 40, 40, 0));
+  const std::string with_alpha = (dir.path() / "alpha.png").string();
+  ASSERT_TRUE(cv::imwrite(with_alpha, bgra));
+  const cv::Mat from_alpha = ReadOccluderMask(with_alpha, Cam("cam0", 320, 240));
+  EXPECT_EQ(cv::countNonZero(from_alpha), 100 * 40);
+  EXPECT_EQ(from_alpha.at<uchar>(220, 50), 255);
   const std::string text = dir.Write("not.png", "no image").string();
   test::ExpectInputError([&] { ReadOccluderMask(text, Cam("cam0", 320, 240)); }, {text, "PNG"});
 }
