@@ -40,10 +40,17 @@ AnnealedFilter::AnnealedFilter(const StateModel& model, const SilhouetteLikeliho
 
 void AnnealedFilter::Initialise(const InitialGuess& guess, int count, int frame) {
   particles_.resize(count, model_.Dimension());
+  const PlacementIndex p = model_.placement();
   pool_->For(count, [&](int begin, int end, int) {
     for (int i = begin; i < end; ++i) {
       Random random(options_.seed, frame, 1000, i);
       model_.Sample(guess, &random, particles_.row(i).data());
+      const int k = i % static_cast<int>(guess.other_floors_mm.size() + 1);
+      if (k > 0) {
+        const Eigen::Vector2d shift = guess.other_floors_mm[k - 1] - guess.floor_mm;
+        particles_(i, p.x) += shift.x();
+        particles_(i, p.z) += shift.y();
+      }
     }
   });
 }

@@ -258,6 +258,9 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   options.annealing.seed = tracker_options_.annealing.seed + 1000003ull * static_cast<uint64_t>(p->id - 1);
   options.restart_within_mm = options_.restart_within_mm;
   options.split_merged_starts = true;  // as the birth saw them
+  // Among others, a camera whose reading of the place differs is most likely seeing
+  // someone else: it is not tried.
+  options.starts_try_each_camera = false;
   // The start's own choice: the person nearest where the candidate was first seen (the
   // start's first frame).
   options.person = PersonPreference::Near(c.places.front(), options_.birth_clear_mm);

@@ -404,6 +404,7 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
     sighting.whole = false;
     sighting.boxes.assign(cameras.size(), cv::Rect());
     sighting.areas.assign(cameras.size(), 0);
+    sighting.camera_floor_mm.assign(cameras.size(), Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
     std::vector<double> agreeing_x, agreeing_z, heights, guessed_x, guessed_z;
     for (size_t c = 0; c < candidates.size(); ++c) {
       // The blob nearest that place, if near enough.
@@ -419,6 +420,7 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
       sighting.boxes[c] = p.box;
       sighting.areas[c] = p.area;
       sighting.whole = sighting.whole || p.whole;
+      if (p.feet) sighting.camera_floor_mm[c] = p.floor;
       (p.feet ? agreeing_x : guessed_x).push_back(p.floor.x());
       (p.feet ? agreeing_z : guessed_z).push_back(p.floor.y());
       if (p.height > 0) heights.push_back(p.height);

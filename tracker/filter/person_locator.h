@@ -55,6 +55,10 @@ struct PersonSighting {
                                                        // image's side edges
   std::vector<cv::Rect> boxes;                         // per camera: the blob's box (empty if none)
   std::vector<int> areas;                              // and its pixels (0 if none)
+  // Per camera: where its blob's feet put the person (NaN when it has no blob here, or
+  // read it from a head). The place is their median; a shadow at the feet or clutter
+  // merged with the blob moves one camera's reading a metre while the others agree.
+  std::vector<Eigen::Vector2d> camera_floor_mm;
 };
 
 // Every person the masks show, the best evidence first (the most cameras agreeing, then

@@ -10,7 +10,9 @@
 // well and kept beside the particles (tracker/filter/body_shape.h).
 //
 // Start: the first frames' masks give the person's place, height and direction of travel
-// (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there.
+// (tracker/filter/person_locator.h); particles are spread over every pose the prior allows there,
+// and over each camera's own reading of the place where it differs from the others'
+// (InitialGuess::other_floors_mm: a shadow or clutter in one blob moves that camera's).
 // With several people in view one is chosen (TrackerOptions::person) and kept: every later
 // look at the masks asks for the person nearest where the dynamics put them.
 // A start or restart on someone whose feet are behind someone tracked or a painted
@@ -164,6 +166,9 @@ struct TrackerOptions {
   // Starts (and restarts) read merged blobs as the people in them (LocatePeople's
   // split_merged); several people tracked at once set it, as their births do.
   bool split_merged_starts = false;
+  // Starts also try each camera's own reading of the place where it differs from the
+  // others' by more than relocate_distance_mm (Guess; InitialGuess::other_floors_mm).
+  bool starts_try_each_camera = true;
 
   bool Check(std::string* why) const;
 };

@@ -32,6 +32,10 @@ struct PlacementIndex {
 struct InitialGuess {
   Eigen::Vector2d floor_mm = Eigen::Vector2d::Zero();  // root (x, z)
   double floor_std_mm = 150;
+  // Other places the cameras read (each camera's own, when it differs from floor_mm by
+  // more than the locator's error): the start spreads its particles over these as well,
+  // equally, and lets the silhouettes choose.
+  std::vector<Eigen::Vector2d> other_floors_mm;
   double heading_rad = 0;
   double heading_std_rad = 3.2;  // >= pi: any heading
   double size = 1;
