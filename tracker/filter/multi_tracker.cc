@@ -259,10 +259,8 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   options.restart_within_mm = options_.restart_within_mm;
   options.split_merged_starts = true;  // as the birth saw them
   // Among others, a camera whose reading of the place differs is most likely seeing
-  // someone else, and a body turned to any heading fits a neighbour: neither is tried
-  // (the 3-walker crossing from its videos, 4 seeds: MOTA 0.976 -> 0.952 with them).
+  // someone else: it is not tried.
   options.starts_try_each_camera = false;
-  options.turn_every = 0;
   // The start's own choice: the person nearest where the candidate was first seen (the
   // start's first frame).
   options.person = PersonPreference::Near(c.places.front(), options_.birth_clear_mm);

@@ -67,7 +67,6 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
   else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
-  else if (turn_every < 0) problem = "turn_every must be >= 0 (0: never)";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
     problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
@@ -372,9 +371,6 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   if (legs_by_phase_ && !fresh_ && !frame.dropped && options_.mirror_every > 0 &&
       frames_since_start_ < options_.mirror_frames)
     filter_->Shift(0, 0.5, options_.mirror_every);
-  if (legs_by_phase_ && !fresh_ && !frame.dropped && options_.turn_every > 0 && cameras_.size() >= 2 &&
-      bad_frames_ == 0 && !hidden_)
-    filter_->Reorient(options_.turn_every, frame.index);
   ++frames_since_start_;
   // Where the dynamics put the person now (walking on at their speed and heading).
   Eigen::Vector2d predicted_floor_mm;

@@ -134,19 +134,6 @@ struct TrackerOptions {
   int mirror_streak = 5;          // ...once it has fitted better this many frames in a row
   int mirror_every = 10;          // every k-th particle is moved half a cycle on each frame...
   int mirror_frames = 30;         // ...of the first this many after a start from the masks
-  // Every turn_every-th particle is turned to any heading before each update (0: never),
-  // when the last frame was explained well and two cameras or more see: a walker who turns
-  // round on the spot, or a start that read the heading backwards (a silhouette hardly
-  // tells front from back), is beyond the heading's noise (6 degrees a frame for a tenth
-  // of the particles reaches 180 in no clip). With one camera a body turned and placed
-  // elsewhere in depth fits the view as well (the monocular tuning webcam clip lost 58.5
-  // -> 82.7 mm, 3 seeds); explained badly (someone hidden, a blob elsewhere), a turned
-  // body fitted to whatever shows walked the prediction off sideways. Chosen on the realism
-  // tuning clips with two cameras (4 seeds, bodytrack 14 mean absolute mm, as a share of the
-  // particles turned in the dynamics, ungated): never 135.5, every 50th 135.1, every 20th
-  // 131.2 (the seeds' noise about 4 mm; gated as here, 133.2). The realism suite's turning
-  // clips show it: the moonwalk 210.5 -> 109.2 mm.
-  int turn_every = 20;
   // A second look: every relocate_every frames (0: never) the masks are searched for the
   // person as at a start; when they put them more than relocate_distance_mm from the
   // prediction, but no farther than a brisk walker goes in the frames since the last
