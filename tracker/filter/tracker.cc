@@ -218,12 +218,13 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   // near a camera); the adult-height guesses, less sure, otherwise.
   const bool feet = std::any_of(sightings.begin(), sightings.end(),
                                 [](const PersonSighting& s) { return s.found && s.feet_seen; });
+  const auto used = [feet](const PersonSighting& s) { return s.found && s.feet_seen == feet; };
   std::vector<double> heights;
   double n = 0, st = 0, stt = 0;
   Eigen::Vector2d sp = Eigen::Vector2d::Zero(), stp = Eigen::Vector2d::Zero();
   for (size_t i = 0; i < sightings.size(); ++i) {
     const PersonSighting& s = sightings[i];
-    if (!s.found || s.feet_seen != feet) continue;
+    if (!used(s)) continue;
     if (s.height_mm > 0) heights.push_back(s.height_mm);
     n += 1, st += times[i], stt += times[i] * times[i];
     sp += s.floor_mm, stp += times[i] * s.floor_mm;
@@ -243,13 +244,14 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   // the readings averaged over the start's frames: the realism suite's surveillance quad
   // lost 31.9 -> 44.5 mm, 4 seeds, its particles spread over places the locator's jitter
   // made.)
-  const auto used = [feet](const PersonSighting& s) { return s.found && s.feet_seen == feet; };
-  const PersonSighting& at = at_last ? *std::find_if(sightings.rbegin(), sightings.rend(), used)
-                                     : *std::find_if(sightings.begin(), sightings.end(), used);
-  for (const Eigen::Vector2d& own : at.camera_floor_mm) {
-    const Eigen::Vector2d offset = own - at.floor_mm;
-    if (options_.starts_try_each_camera && own.allFinite() && offset.norm() > options_.relocate_distance_mm)
-      guess->other_floors_mm.push_back(guess->floor_mm + offset);
+  if (options_.starts_try_each_camera) {
+    const PersonSighting& at = at_last ? *std::find_if(sightings.rbegin(), sightings.rend(), used)
+                                       : *std::find_if(sightings.begin(), sightings.end(), used);
+    for (const Eigen::Vector2d& own : at.camera_floor_mm) {
+      const Eigen::Vector2d offset = own - at.floor_mm;
+      if (own.allFinite() && offset.norm() > options_.relocate_distance_mm)
+        guess->other_floors_mm.push_back(guess->floor_mm + offset);
+    }
   }
   if (options_.known_size) {
     guess->size = 1, guess->size_std = 0;

@@ -1,7 +1,8 @@
 // Painted static occluders against hand-made answers: a painting is read as it was painted
-// (any colour channel; an alpha channel is not paint), refused with the file named when it is not the camera's size, and
-// handed to every frame as its hidden pixels at the masks' size, a pixel hidden when the
-// painting covers any part of it; the factory gives one painting per camera or refuses.
+// (any colour channel; an alpha channel is not paint), refused with the file named when it
+// is not the camera's size, and handed to every frame as its hidden pixels at the masks'
+// size, a pixel hidden when the painting covers any part of it; the factory gives one
+// painting per camera or refuses.
 #include "tracker/frames/occluder_masks.h"
 
 #include <gtest/gtest.h>
