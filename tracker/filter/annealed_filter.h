@@ -68,6 +68,8 @@ class AnnealedFilter {
   AnnealingReport Update(const std::vector<CameraObservation>& observations, int frame, int layers = 0);
 
   const StateMatrix& particles() const { return particles_; }
+  // Puts back particles taken from particles() (an update undone).
+  void Reset(const StateMatrix& particles) { particles_ = particles; }
   // Adds `offset` to one coordinate of every particle, or of every `every`-th one (then
   // normalises them).
   void Shift(int dimension, double offset, int every = 1);

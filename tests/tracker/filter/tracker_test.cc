@@ -315,40 +315,47 @@ cv::Mat HideFrom(cv::Mat* mask, int top) {
 
 // The walker hidden for half a second while a walker-sized blob shows up a metre and more
 // away in both views: the person is predicted, not restarted on the blob, and tracked
-// again where they reappear.
+// again where they reappear. Over several seeds: the four frames before the person counts
+// as hidden, fitted to the blob aside, shrank the body and its stride, and the prediction
+// then walked on at a fifth of the walker's speed, 1.3 m behind by the end for seeds 4 and 6
+// (TrackerOptions::predict_bad_frames).
 TEST(Tracker, AHiddenPersonIsPredictedNotSwappedForSomeoneElsewhere) {
   const Fixture& f = Shared();
   const ClipGroundTruth& truth = f.truth;
-  const auto tracker = SharedTracker(100, 3);
-  std::vector<Frame> first;
-  for (int k = 0; k < 5; ++k) first.push_back(ClipFrameAt(truth, f.clip, k));
-  ASSERT_TRUE(tracker->StartFromFrames(first));
-  std::vector<TrackStatus> statuses;
-  std::vector<double> root_error;
-  for (int k = 0; k < kFrames; ++k) {
-    Frame frame = ClipFrameAt(truth, f.clip, k);
-    if (k >= 8 && k < 22) {
-      for (cv::Mat& mask : frame.masks) {  // the walker's own silhouette, 55 px aside
-        mask = ShiftedRight(mask, 55);
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const auto tracker = SharedTracker(100, seed);
+    std::vector<Frame> first;
+    for (int k = 0; k < 5; ++k) first.push_back(ClipFrameAt(truth, f.clip, k));
+    ASSERT_TRUE(tracker->StartFromFrames(first));
+    std::vector<TrackStatus> statuses;
+    std::vector<double> root_error;
+    for (int k = 0; k < kFrames; ++k) {
+      Frame frame = ClipFrameAt(truth, f.clip, k);
+      if (k >= 8 && k < 22) {
+        for (cv::Mat& mask : frame.masks) {  // the walker's own silhouette, 55 px aside
+          mask = ShiftedRight(mask, 55);
+        }
       }
+      const TrackedFrame out = tracker->Step(frame);
+      statuses.push_back(out.status);
+      const Eigen::Vector3d d = out.state.size()
+                                    ? Eigen::Vector3d(out.joints_mm.col(0) - truth.frames[k].joints_mm.col(0))
+                                    : Eigen::Vector3d::Constant(1e9);
+      root_error.push_back(std::hypot(d.x(), d.z()));
     }
-    const TrackedFrame out = tracker->Step(frame);
-    statuses.push_back(out.status);
-    const Eigen::Vector3d d = out.state.size() ? Eigen::Vector3d(out.joints_mm.col(0) - truth.frames[k].joints_mm.col(0))
-                                               : Eigen::Vector3d::Constant(1e9);
-    root_error.push_back(std::hypot(d.x(), d.z()));
+    std::string line;
+    for (TrackStatus s : statuses) line += TrackStatusName(s)[0];
+    std::printf("seed %d: statuses %s; root error while hidden (frames 8-21): max %.0f mm\n", static_cast<int>(seed),
+                line.c_str(), *std::max_element(root_error.begin() + 8, root_error.begin() + 22));
+    for (int k = 8; k < 22; ++k) {
+      EXPECT_NE(statuses[k], TrackStatus::kLost) << k;
+      EXPECT_LT(root_error[k], 600) << k;  // never on the blob (well over a metre away)
+    }
+    EXPECT_EQ(statuses[20], TrackStatus::kPredicted);
+    EXPECT_EQ(statuses[kFrames - 1], TrackStatus::kTracked);
+    EXPECT_LT(root_error[kFrames - 1], 150);
   }
-  std::string line;
-  for (TrackStatus s : statuses) line += TrackStatusName(s)[0];
-  std::printf("statuses %s; root error while hidden (frames 8-21): max %.0f mm\n", line.c_str(),
-              *std::max_element(root_error.begin() + 8, root_error.begin() + 22));
-  for (int k = 8; k < 22; ++k) {
-    EXPECT_NE(statuses[k], TrackStatus::kLost) << k;
-    EXPECT_LT(root_error[k], 600) << k;  // never on the blob (well over a metre away)
-  }
-  EXPECT_EQ(statuses[20], TrackStatus::kPredicted);
-  EXPECT_EQ(statuses[kFrames - 1], TrackStatus::kTracked);
-  EXPECT_LT(root_error[kFrames - 1], 150);
 }
 
 // Someone tracked with the walker (several people at once) passes in front of them in
