@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "io/base/error.h"
@@ -68,6 +69,14 @@ void AnnealedFilter::Relocate(const Eigen::Vector2d& floor_mm, double std_mm, in
     Random random(options_.seed, frame, 5000, i);
     particles_(i, p.x) = floor_mm.x() + std_mm * random.Normal();
     particles_(i, p.z) = floor_mm.y() + std_mm * random.Normal();
+  }
+}
+
+void AnnealedFilter::Reorient(int every, int frame) {
+  const PlacementIndex p = model_.placement();
+  for (int i = every - 1; i < particles_.rows(); i += every) {
+    Random random(options_.seed, frame, 6000, i);
+    particles_(i, p.heading) = (2 * random.Uniform() - 1) * std::numbers::pi;
   }
 }
 

@@ -79,6 +79,10 @@ class AnnealedFilter {
   // each way), the rest of its state kept: a second look where the masks say the person
   // is, which the annealing then keeps or drops. `frame` keys the random numbers.
   void Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame);
+  // Turns every `every`-th particle to a heading drawn uniformly, the rest of its state
+  // kept: a look in every direction, which the annealing keeps where the silhouettes
+  // agree. `frame` keys the random numbers.
+  void Reorient(int every, int frame);
   // The particles' mean (they are equally weighted between frames), periodic coordinates
   // about the first particle.
   Eigen::VectorXd Mean() const;

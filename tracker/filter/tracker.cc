@@ -67,6 +67,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
   else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
+  else if (turn_every < 0) problem = "turn_every must be >= 0 (0: never)";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
     problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
@@ -471,6 +472,10 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // hidden, their blob gone aside) leaves the particles as the dynamics put them: fitted
   // to whatever shows, they shrank and shortened their stride, and then, hidden, walked on
   // at a fifth of the walker's speed (the hidden-person test, seeds 4 and 6).
+  // Turns to any heading (TrackerOptions::turn_every), with two cameras or more after a
+  // frame explained well; one that wins a frame explained badly is undone with the rest.
+  if (legs_by_phase_ && !fresh_ && options_.turn_every > 0 && cameras_.size() >= 2 && bad_frames_ == 0)
+    filter_->Reorient(options_.turn_every, frame.index);
   const StateMatrix predicted = filter_->particles();
   AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (!fresh_ && options_.predict_bad_frames && ExplainsBadly(report.estimate, observations)) {
