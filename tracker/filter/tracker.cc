@@ -468,14 +468,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     if (seen.found && seen.feet_seen && near_prediction(seen)) held_size_ = 0;
     else filter_->Set(state_model_->placement().size, held_size_);
   }
-  // A frame the annealed estimate explains badly (mean IoU under lost_iou: the person
-  // hidden, their blob gone aside) leaves the particles as the dynamics put them: fitted
-  // to whatever shows, they shrank and shortened their stride, and then, hidden, walked on
-  // at a fifth of the walker's speed (the hidden-person test, seeds 4 and 6).
   // Turns to any heading (TrackerOptions::turn_every), with two cameras or more after a
-  // frame explained well; one that wins a frame explained badly is undone with the rest.
+  // frame explained well.
   if (legs_by_phase_ && !fresh_ && options_.turn_every > 0 && cameras_.size() >= 2 && bad_frames_ == 0)
     filter_->Reorient(options_.turn_every, frame.index);
+  // A frame the annealed estimate explains badly (mean IoU under lost_iou: the person
+  // hidden, their blob gone aside) leaves the particles as the dynamics put them, any turn
+  // among them: fitted to whatever shows, they shrank and shortened their stride, and then,
+  // hidden, walked on at a fifth of the walker's speed (the hidden-person test, seeds 4, 6).
   const StateMatrix predicted = filter_->particles();
   AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (!fresh_ && options_.predict_bad_frames && ExplainsBadly(report.estimate, observations)) {
