@@ -478,7 +478,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // hidden, walked on at a fifth of the walker's speed (the hidden-person test, seeds 4, 6).
   const StateMatrix predicted = filter_->particles();
   AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
-  if (!fresh_ && options_.predict_bad_frames && ExplainsBadly(report.estimate, observations)) {
+  const bool judged = !fresh_ && options_.predict_bad_frames;
+  if (judged && ExplainsBadly(report.estimate, observations)) {
     filter_->Reset(predicted);
     report.estimate = filter_->Mean();
   }
@@ -489,7 +490,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   fresh_ = false;
   out.state = report.estimate;
   out.ess = report.ess;
-  out.evaluations = report.evaluations;
+  out.evaluations = report.evaluations + (judged ? 1 : 0);
   if (legs_by_phase_) {
     // Which leg is forward: the estimate against itself half a cycle on.
     Eigen::VectorXd mirror = out.state;
