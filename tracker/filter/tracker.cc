@@ -476,9 +476,9 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // hidden, their blob gone aside) leaves the particles as the dynamics put them, any turn
   // among them: fitted to whatever shows, they shrank and shortened their stride, and then,
   // hidden, walked on at a fifth of the walker's speed (the hidden-person test, seeds 4, 6).
-  const StateMatrix predicted = filter_->particles();
-  AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   const bool judged = !fresh_ && options_.predict_bad_frames;
+  const StateMatrix predicted = judged ? filter_->particles() : StateMatrix();
+  AnnealingReport report = filter_->Update(observations, frame.index, fresh_ ? options_.start_layers : 0);
   if (judged && ExplainsBadly(report.estimate, observations)) {
     filter_->Reset(predicted);
     report.estimate = filter_->Mean();
