@@ -26,4 +26,17 @@ std::shared_ptr<const PoseTable> CachedPoseTable(const GaitModel& model, const s
                                                  const std::string& asf_path, const PoseTableOptions& options,
                                                  const std::function<void(const std::string&)>& note = {});
 
+// The same in two steps, so that the kept table is read while the model file is parsed
+// (each took about half a second for ML-JGPM on one core): the kept table whose key
+// matches, read without the model (null when there is none, or it is stale or damaged:
+// then said to `note`); then `kept` when it fits `model` (its kind, bones and channels),
+// else the table built and kept.
+std::unique_ptr<PoseTable> ReadKeptPoseTable(const std::string& model_path, const std::string& asf_path,
+                                             const PoseTableOptions& options,
+                                             const std::function<void(const std::string&)>& note = {});
+std::shared_ptr<const PoseTable> CachedPoseTable(const GaitModel& model, const std::string& model_path,
+                                                 const std::string& asf_path, const PoseTableOptions& options,
+                                                 const std::function<void(const std::string&)>& note,
+                                                 std::unique_ptr<PoseTable> kept);
+
 }  // namespace jgpm

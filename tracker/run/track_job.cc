@@ -211,10 +211,20 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     std::unique_ptr<GaitModel> model;
     std::shared_ptr<const PoseTable> table;
   };
-  std::future<Prior> reading = std::async(std::launch::async, [&o, table_options, with_table] {
+  // The kept pose table is read on a thread of its own while the model is parsed: one after
+  // the other they took 1.2 s before a 4-camera clip's first frame (0.45 s parsing the
+  // model, 0.75 s reading the 68 MB table into a string and copying it out).
+  std::future<std::unique_ptr<PoseTable>> kept_table;
+  if (with_table) {
+    kept_table = std::async(std::launch::async, [&o, table_options] {
+      return ReadKeptPoseTable(o.model, o.asf, table_options, o.source.note);
+    });
+  }
+  std::future<Prior> reading = std::async(std::launch::async, [&o, table_options, with_table, &kept_table] {
     Prior prior{ReadModelFile(o.model), nullptr};
     if (!o.asf.empty()) prior.model = ModelOnSkeleton(*prior.model, o.asf);
-    if (with_table) prior.table = CachedPoseTable(*prior.model, o.model, o.asf, table_options, o.source.note);
+    if (with_table)
+      prior.table = CachedPoseTable(*prior.model, o.model, o.asf, table_options, o.source.note, kept_table.get());
     return prior;
   });
   FrameSourceSpec spec = o.source;

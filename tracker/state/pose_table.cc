@@ -145,7 +145,7 @@ void PutVector(std::string* out, const std::vector<T>& values) {
 // Reads what Put wrote, refusing to run past the end.
 class Reader {
  public:
-  Reader(const std::string& bytes, const std::string& source) : bytes_(bytes), source_(source) {}
+  Reader(std::string_view bytes, const std::string& source) : bytes_(bytes), source_(source) {}
   template <typename T>
   T Get() {
     T value;
@@ -164,7 +164,7 @@ class Reader {
   std::string GetString() {
     const uint64_t n = Get<uint64_t>();
     if (n > bytes_.size() - at_) Fail("truncated");
-    std::string text = bytes_.substr(at_, n);
+    std::string text(bytes_.substr(at_, n));
     at_ += n;
     return text;
   }
@@ -183,7 +183,7 @@ class Reader {
     std::memcpy(to, bytes_.data() + at_, n);
     at_ += n;
   }
-  const std::string& bytes_;
+  std::string_view bytes_;
   const std::string& source_;
   size_t at_ = 0;
 };
@@ -210,7 +210,7 @@ std::string PoseTable::Serialize(const std::string& key) const {
   return out;
 }
 
-std::unique_ptr<PoseTable> PoseTable::Parse(const std::string& bytes, const std::string& key,
+std::unique_ptr<PoseTable> PoseTable::Parse(std::string_view bytes, const std::string& key,
                                             const std::string& source) {
   Reader in(bytes, source);
   char magic[sizeof(kMagic)];

@@ -19,6 +19,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -58,7 +59,7 @@ class PoseTable {
   // The table in `bytes` when they hold `key`; null when they hold another key. InputError
   // naming `source` when the bytes are not a table (truncated, sizes that disagree, not
   // finite).
-  static std::unique_ptr<PoseTable> Parse(const std::string& bytes, const std::string& key, const std::string& source);
+  static std::unique_ptr<PoseTable> Parse(std::string_view bytes, const std::string& key, const std::string& source);
 
   bool manifold() const { return manifold_; }
   int NumBones() const { return bones_; }

@@ -37,8 +37,15 @@ TEST(PoseTableCache, KeepsTheTableAndRebuildsWhenTheModelOrOptionsChange) {
 
   const fs::path kept = PoseTableCachePath(path.string());
   EXPECT_EQ(kept, dir.path() / "model.json.table");
+  EXPECT_EQ(ReadKeptPoseTable(path.string(), "", options, note), nullptr);  // none kept yet
   const auto built = CachedPoseTable(*model, path.string(), "", options, note);
   ASSERT_TRUE(fs::exists(kept));
+  // Read without the model (while it is parsed), then fitted to it.
+  std::unique_ptr<PoseTable> alone = ReadKeptPoseTable(path.string(), "", options, note);
+  ASSERT_TRUE(alone);
+  EXPECT_EQ(alone->Serialize("k"), built->Serialize("k"));
+  EXPECT_EQ(CachedPoseTable(*model, path.string(), "", options, note, std::move(alone))->Serialize("k"),
+            built->Serialize("k"));
   const std::string bytes = ReadBytes(kept);
   const auto time = fs::last_write_time(kept);
   const auto read = CachedPoseTable(*model, path.string(), "", options, note);
@@ -48,6 +55,7 @@ TEST(PoseTableCache, KeepsTheTableAndRebuildsWhenTheModelOrOptionsChange) {
 
   // Other options: another table, and the file replaced.
   options.phase_nodes = 20;
+  EXPECT_EQ(ReadKeptPoseTable(path.string(), "", options, note), nullptr);  // another key
   const auto other = CachedPoseTable(*model, path.string(), "", options, note);
   EXPECT_NE(other->Serialize("k"), built->Serialize("k"));
   EXPECT_NE(ReadBytes(kept), bytes);
