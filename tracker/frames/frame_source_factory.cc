@@ -57,6 +57,7 @@ std::unique_ptr<FrameSource> MakeFrameSource(const FrameSourceSpec& spec) {
     options.cameras = spec.clip_cameras;
     options.exact_masks = spec.exact_masks;
     options.max_frames = spec.max_frames;
+    options.with_images = spec.clip_images;
     if (spec.clip_foreground) options.foreground = spec.foreground;
     return std::make_unique<ClipFrameSource>(spec.clip, options);
   }

@@ -35,6 +35,7 @@ struct FrameSourceSpec {
   // set for a clip, computed from its videos as for any video.
   bool exact_masks = false;
   bool clip_foreground = false;
+  bool clip_images = false;  // a clip's videos decoded too, ahead with the masks (for overlays)
   ForegroundOptions foreground;
   std::vector<std::string> backgrounds;
   double mask_person_px = 0;  // VideoFrameSourceOptions::person_px: a learnt background's

@@ -60,9 +60,8 @@ Eigen::Matrix3Xd WalkerJoints(const ClipGroundTruth& truth, int id, int frame) {
 // --people all: CLEAR MOT and the paired people's pose error against a clip's walkers, and
 // the results folder (poses.json with each frame's people, tracked_ID.bvh per person, the
 // cameras, the overlays).
-void FinishPeople(const TrackJobOptions& o, const ClipFrameSource* clip, const GaitModel& model,
-                  const BodyModel& any_body, const std::function<const BodyModel&(int)>& body_of, OutputFolder* folder,
-                  std::optional<OverlayVideos>* overlays, bool images_now, TrackJobResult* result) {
+void FinishPeople(const TrackJobOptions& o, const ClipFrameSource* clip, const GaitModel& model, OutputFolder* folder,
+                  std::optional<OverlayVideos>* overlays, TrackJobResult* result) {
   const TrackRun& run = result->run;
   const std::vector<PeopleFrame>& people = result->people;
   if (clip) {
@@ -113,22 +112,6 @@ void FinishPeople(const TrackJobOptions& o, const ClipFrameSource* clip, const G
     names.push_back(c.name + ".yaml");
   }
   batch.Commit();
-  if (o.overlays && !images_now) {
-    ClipFrameSourceOptions image_options;
-    image_options.cameras = clip->camera_indices();
-    image_options.exact_masks = o.source.exact_masks;
-    image_options.max_frames = people.back().index + 1;
-    image_options.with_images = true;
-    ClipFrameSource images(o.source.clip, image_options);
-    overlays->emplace(dir, run.cameras, run.fps, any_body, model.skeleton());
-    Frame frame;
-    for (const PeopleFrame& f : people) {
-      if (!images.Next(&frame)) break;
-      std::vector<std::pair<int, TrackedFrame>> drawn;
-      for (const PersonFrame& p : f.people) drawn.emplace_back(p.id, p.frame);
-      (*overlays)->AddPeople(frame, drawn, body_of);
-    }
-  }
   if (*overlays) (*overlays)->Close();
   folder->Commit();
   for (const std::string& name : names) result->written.push_back(fs::path(o.out) / name);
@@ -228,6 +211,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     return prior;
   });
   FrameSourceSpec spec = o.source;
+  // A clip's overlays are drawn as the frames go by, its videos decoded on the reading
+  // thread with the masks (after the run, decoding and encoding them took a tenth of its
+  // wall time on a 4-camera clip).
+  spec.clip_images = o.overlays && !o.out.empty();
   // A learnt background's masks are made at the working resolution, not brought to it.
   if (o.working.enabled) spec.mask_person_px = o.working.person_px;
   std::unique_ptr<FrameSource> made = MakeFrameSource(spec);
@@ -280,12 +267,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   result.held_frames = tracker_options.start_frames +
                        (result.live && o.source.backgrounds.empty() ? o.source.foreground.learning_frames : 0);
 
-  // Overlays are written as the frames go by when the frames bring their images; a clip
-  // tracked from its masks is decoded for them afterwards (kept out of the tracking time).
-  const bool images_now = video || o.source.clip_foreground;
+  // Overlays are written as the frames go by.
   const fs::path dir = folder ? folder->partial() : fs::path();
   std::optional<OverlayVideos> overlays;
-  if (folder && o.overlays && images_now) overlays.emplace(dir, run.cameras, run.fps, tracker.body(), model->skeleton());
+  if (folder && o.overlays) overlays.emplace(dir, run.cameras, run.fps, tracker.body(), model->skeleton());
   std::optional<MultiTracker> multi;
   if (o.people) multi.emplace(*model, source->cameras(), tracker_options, o.multi, table);
   const auto body_of = [&multi](int id) -> const BodyModel& { return multi->body(id); };
@@ -399,7 +384,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     ThrowInputError(run.source, "no frame was tracked" + (result.stopped.empty() ? "" : " (" + result.stopped + ")"));
   }
   if (o.people) {
-    FinishPeople(o, clip, *model, tracker.body(), body_of, folder ? &*folder : nullptr, &overlays, images_now, &result);
+    FinishPeople(o, clip, *model, folder ? &*folder : nullptr, &overlays, &result);
     finished(&result);
     return result;
   }
@@ -423,20 +408,6 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   // that anyone can project poses.json into the images.
   for (const Camera& c : run.cameras) batch.Add(dir / (c.name + ".yaml"), FormatCameraYaml({c, true}));
   batch.Commit();
-  if (o.overlays && !images_now) {
-    ClipFrameSourceOptions image_options;
-    image_options.cameras = clip->camera_indices();
-    image_options.exact_masks = o.source.exact_masks;
-    image_options.max_frames = run.frames.back().index + 1;
-    image_options.with_images = true;
-    ClipFrameSource images(o.source.clip, image_options);
-    overlays.emplace(dir, run.cameras, run.fps, tracker.body(), model->skeleton());
-    Frame frame;
-    for (const TrackedFrame& f : run.frames) {
-      if (!images.Next(&frame)) break;
-      overlays->Add(frame, f);
-    }
-  }
   if (overlays) overlays->Close();  // the videos written and closed before the folder moves
   folder->Commit();
   for (const char* name : {"poses.json", "tracked.amc", "tracked.asf", "tracked.bvh"}) {

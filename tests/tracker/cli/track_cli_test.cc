@@ -273,14 +273,15 @@ TEST(TrackCli, EveryoneInViewWithPeopleAll) {
   EXPECT_FALSE(fs::exists(out / "tracked.bvh"));
 }
 
-// From video, the overlays are written as the frames are tracked, yet a person confirmed a
-// few frames after they were first followed is drawn in those frames too, as poses.json
-// lists them (the overlay was written before the confirmation, and frames 0-1 were bare).
-TEST(TrackCli, OverlaysFromVideoDrawPeopleFromTheirFirstFrame) {
+// The overlays are written as the frames are tracked (from a clip's masks too, its video
+// decoded as it goes), yet a person confirmed a few frames after they were first followed
+// is drawn in those frames too, as poses.json lists them (the overlay was written before
+// the confirmation, and frames 0-1 were bare).
+void ExpectPeopleDrawnFromTheirFirstFrame(const std::string& options) {
   test::TempDir dir;
   const fs::path clip = dir.path() / "two", out = dir.path() / "out";
   Result r;
-  ASSERT_NO_FATAL_FAILURE(TrackTwoWalkers(clip, out, 12, "--foreground mog2", &r));
+  ASSERT_NO_FATAL_FAILURE(TrackTwoWalkers(clip, out, 12, options, &r));
   const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
   ASSERT_FALSE(poses["frames"][0]["people"].empty()) << "nobody placed in frame 0";
   cv::VideoCapture overlay((out / "overlay_cam0.avi").string()), video((clip / "cam0.avi").string());
@@ -297,6 +298,12 @@ TEST(TrackCli, OverlaysFromVideoDrawPeopleFromTheirFirstFrame) {
     EXPECT_GT(changed, 300 * static_cast<int>(frame["people"].size())) << "frame " << frame["frame"];
   }
 }
+
+TEST(TrackCli, OverlaysFromVideoDrawPeopleFromTheirFirstFrame) {
+  ExpectPeopleDrawnFromTheirFirstFrame("--foreground mog2");
+}
+
+TEST(TrackCli, OverlaysFromMasksDrawPeopleFromTheirFirstFrame) { ExpectPeopleDrawnFromTheirFirstFrame(""); }
 
 TEST(TrackCli, BadRequestsGiveOneLineAndWriteNothing) {
   const Fixture& f = Shared();
