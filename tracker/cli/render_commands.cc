@@ -142,6 +142,10 @@ void AddRenderCommands(CLI::App& app) {
   render->add_flag("--shadow", a->clip.scene.shadow,
                    "the walker's shadow on the floor from a random light (in the video and the observed masks, "
                    "not the exact ones)");
+  render->add_option("--reflection", a->clip.scene.reflection,
+                     "a glossy floor reflecting the walkers with this reflectance, 0-0.5 (in the video, and in the "
+                     "observed masks where it shows, not the exact ones)")
+      ->capture_default_str()->check(CLI::Range(0.0, 0.5));
   render->add_option("--occluders", a->clip.scene.occluders,
                      "static objects between the cameras and the walk (pillar, table, bicycle) and as many things "
                      "passing in front of the walker")

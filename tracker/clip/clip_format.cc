@@ -231,9 +231,10 @@ std::string FormatGroundTruth(const ClipGroundTruth& t) {
                            {"holes", deg.holes}, {"clutter_blobs", deg.clutter_blobs},
                            {"lighting_gain", deg.lighting_gain}, {"drop_rate", deg.drop_rate}};
   truth["body_model"] = BodyJson(t.body, t.body_parts);
-  if (t.rig != RigKind::kRing || t.calibration_error > 0 || t.shadow || !t.occluders.empty()) {
+  if (t.rig != RigKind::kRing || t.calibration_error > 0 || t.shadow || t.reflection > 0 || !t.occluders.empty()) {
     truth["scene"] = {{"rig", std::string(RigKindName(t.rig))}, {"calibration_error", t.calibration_error},
                       {"shadow", t.shadow}, {"occluders", t.occluders}};
+    if (t.reflection > 0) truth["scene"]["reflection"] = t.reflection;
   }
   truth["joint_names"] = t.joint_names;
   truth["joints_note"] = "joints_mm[j] is the end of bone j (the root: its position), world y up, mm";
@@ -297,6 +298,10 @@ ClipGroundTruth ParseGroundTruth(const std::string& text, const std::string& sou
     t.calibration_error = in.Get<double>(scene, "calibration_error", "scene.");
     if (!(t.calibration_error >= 0 && t.calibration_error <= 10)) in.Fail("scene.calibration_error", "expected 0 to 10");
     t.shadow = in.Get<bool>(scene, "shadow", "scene.");
+    if (scene.contains("reflection")) {  // clips before glossy floors have none
+      t.reflection = in.Get<double>(scene, "reflection", "scene.");
+      if (!(t.reflection >= 0 && t.reflection <= 0.5)) in.Fail("scene.reflection", "expected 0 to 0.5");
+    }
     t.occluders = in.Get<std::vector<std::string>>(scene, "occluders", "scene.");
   }
   t.joint_names = in.Get<std::vector<std::string>>(root, "joint_names", "");

@@ -114,6 +114,7 @@ struct ClipGroundTruth {
   RigKind rig = RigKind::kRing;
   double calibration_error = 0;
   bool shadow = false;
+  double reflection = 0;  // the floor's (written when not 0)
   std::vector<std::string> occluders;
   std::vector<Camera> cameras;         // as calibrated (camK.yaml): the tracker's cameras
   std::vector<Camera> render_cameras;  // the cameras that rendered the images, when they

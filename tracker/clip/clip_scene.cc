@@ -109,7 +109,40 @@ bool SceneOptions::Check(std::string* why) const {
     if (why) *why = "occluders: expected 0 to 8";
     return false;
   }
+  if (!(reflection >= 0 && reflection <= 0.5)) {
+    if (why) *why = "reflection: expected 0 to 0.5";
+    return false;
+  }
   return true;
+}
+
+std::vector<Capsule> MirroredInFloor(std::vector<Capsule> capsules) {
+  for (Capsule& c : capsules) {
+    c.from_mm.y() = -c.from_mm.y();
+    c.to_mm.y() = -c.to_mm.y();
+  }
+  return capsules;
+}
+
+void ClipScene::VisibleFloor(const RayCaster& caster, const cv::Mat& objects_depth,
+                             const Eigen::Vector3d& room_centre_mm, double room_radius_mm, cv::Mat* floor) {
+  const Camera& camera = caster.camera();
+  floor->create(camera.height, camera.width, CV_8U);
+  floor->setTo(0);
+  const Eigen::Vector3d& origin = caster.centre_in_world_mm();
+  if (origin.y() <= 0) return;
+  for (int v = 0; v < camera.height; ++v) {
+    uint8_t* out = floor->ptr<uint8_t>(v);
+    const float* objects = objects_depth.ptr<float>(v);
+    for (int w = 0; w < camera.width; ++w) {
+      const Eigen::Vector3d ray = caster.rays().col(static_cast<Eigen::Index>(v) * camera.width + w);
+      if (ray.y() >= -1e-9) continue;
+      const double t = -origin.y() / ray.y();
+      if (t >= objects[w]) continue;
+      const Eigen::Vector3d p = origin + t * ray;
+      if (Eigen::Vector2d(p.x() - room_centre_mm.x(), p.z() - room_centre_mm.z()).norm() < room_radius_mm) out[w] = 255;
+    }
+  }
 }
 
 bool IntersectBox(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const SceneBox& box, double* t,

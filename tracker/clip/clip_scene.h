@@ -15,6 +15,12 @@
 // points whose ray to the light meets the walker are darkened to 40-60% (a real indoor
 // shadow), in the video only, as the exact masks are the walker alone. The observed masks
 // keep it, as a segmentation without shadow removal does.
+//
+// Glossy floor: the floor reflects the walkers with reflectance `reflection` (a polished
+// hall or a wet street 0.1-0.3): each floor pixel is blended with the walkers mirrored in
+// the floor plane, in the video only. The observed masks keep the reflection where it
+// changes the floor by more than kReflectionSeenLevels grey levels, as a background
+// subtraction would see it.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +39,7 @@ namespace jgpm {
 struct SceneOptions {
   int occluders = 0;    // static objects (pillar, table, bicycle), 0-8
   bool shadow = false;  // the walker's cast shadow
+  double reflection = 0;  // the floor's reflectance, 0 (matt) to 0.5
 
   bool Check(std::string* why) const;
 };
@@ -56,6 +63,14 @@ struct SceneObject {
   cv::Vec3f colour_bgr;
 };
 
+// A reflection that changes a floor pixel by more than this (grey levels, any channel) is in
+// the observed masks: MOG2's default threshold is 4 standard deviations, and the clips'
+// sensor noise 2-6 levels.
+constexpr double kReflectionSeenLevels = 20;
+
+// The capsules mirrored in the floor plane y = 0 (their reflection in a glossy floor).
+std::vector<Capsule> MirroredInFloor(std::vector<Capsule> capsules);
+
 class ClipScene {
  public:
   // `joints`: the walk's bone ends per frame (its root path keeps objects off it). Objects,
@@ -77,6 +92,9 @@ class ClipScene {
   // of `body`; 0 elsewhere, and everywhere without a shadow.
   void RenderShadow(const RayCaster& caster, const std::vector<Capsule>& body, const cv::Mat& objects_depth,
                     const Eigen::Vector3d& room_centre_mm, double room_radius_mm, cv::Mat* shadow) const;
+  // 255 where the pixel sees the floor (as above), 0 elsewhere.
+  static void VisibleFloor(const RayCaster& caster, const cv::Mat& objects_depth, const Eigen::Vector3d& room_centre_mm,
+                           double room_radius_mm, cv::Mat* floor);
 
  private:
   SceneOptions options_;

@@ -445,6 +445,9 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
     }
     cv::Mat background;
     room8.convertTo(background, CV_32FC3);
+    const double reflectance = options.scene.reflection;
+    cv::Mat floor;  // where a glossy floor shows the walkers' reflection
+    if (reflectance > 0) ClipScene::VisibleFloor(caster, objects_depth, room, room_radius, &floor);
     {
       // The empty room as the camera saw it before anyone walked in, as a lab records it.
       cv::Mat plate = room8.clone(), plate_noise(camera.height, camera.width, CV_32FC3), plate8;
@@ -465,7 +468,9 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
     BodyImage image;
     cv::Mat colour(camera.height, camera.width, CV_32FC3), noise(camera.height, camera.width, CV_32FC3);
     cv::Mat frame8, clutter_mask(camera.height, camera.width, CV_8UC1), passer_mask(camera.height, camera.width, CV_8UC1);
-    cv::Mat shadow, shadowed;
+    cv::Mat shadow, shadowed, reflected, reflection_seen, mirror_colour;
+    BodyImage mirror;
+    const cv::Mat no_clutter = cv::Mat::zeros(camera.height, camera.width, CV_8UC1);
     cv::Mat hid_by_objects = cv::Mat::zeros(camera.height, camera.width, CV_8UC1);
     cv::RNG cv_rng(options.seed * 7919 + c);
     for (int k = 0; k < frames; ++k) {
@@ -517,6 +522,18 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
         background.copyTo(shadowed, shadow == 0);
         room_now = &shadowed;
       }
+      if (reflectance > 0) {
+        // The walkers mirrored in the floor, seen where the floor is, blended into it.
+        caster.Render(MirroredInFloor(capsules), &mirror);
+        mirror.part.setTo(BodyImage::kNoPart, floor == 0);
+        ComposeFrame(*room_now, mirror, colours, no_clutter, clutter, &mirror_colour);
+        cv::addWeighted(*room_now, 1 - reflectance, mirror_colour, reflectance, 0, reflected);
+        cv::Mat change, channels[3];
+        cv::absdiff(reflected, *room_now, change);
+        cv::split(change, channels);
+        reflection_seen = cv::max(cv::max(channels[0], channels[1]), channels[2]) > kReflectionSeenLevels;
+        room_now = &reflected;
+      }
       ComposeFrame(*room_now, image, colours, clutter_mask, clutter, &colour);
       for (int v = 0; v < colour.rows; ++v) {
         const uint8_t* passer = passer_mask.ptr<uint8_t>(v);
@@ -540,6 +557,7 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
       cv::Mat observed = DegradeMask(mask, options.scene.occluders > 0 ? (clutter_mask | passer_mask) : clutter_mask,
                                      deg, &rng);
       if (options.scene.shadow) observed.setTo(255, shadow);
+      if (reflectance > 0) observed.setTo(255, reflection_seen);
       WriteImage(files.ObservedMask(camera.name, k), observed);
       if (options.contact_sheet && std::find(sheet_frames.begin(), sheet_frames.end(), k) != sheet_frames.end()) {
         sheet_tiles[c].push_back(SheetTile(sheet_skeletons, camera, mask, sheet_joints));
@@ -567,6 +585,7 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
   truth.rig = options.rig.kind;
   truth.calibration_error = options.calibration_error;
   truth.shadow = options.scene.shadow;
+  truth.reflection = options.scene.reflection;
   for (const SceneObject& o : scene.objects()) truth.occluders.push_back(o.kind);
   if (options.calibration_error > 0) truth.render_cameras = cameras;
   WriteFileAtomic(files.GroundTruth(), FormatGroundTruth(truth));

@@ -68,6 +68,7 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
       else if (option == "--clutter") o.degradations.clutter_blobs = in.ParseInt(value, what);
       else if (option == "--lighting") o.degradations.lighting_gain = in.ParseDouble(value, what);
       else if (option == "--drop-rate") o.degradations.drop_rate = in.ParseDouble(value, what);
+      else if (option == "--reflection") o.scene.reflection = in.ParseDouble(value, what);
       else if (option == "--width-scale") o.body.width_scale = in.ParseDouble(value, what);
       else if (option == "--body-seed") o.body.body_seed = static_cast<uint64_t>(in.ParseInt(value, what));
       else if (option == "--clothing") {

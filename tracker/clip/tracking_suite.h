@@ -27,7 +27,7 @@ struct SuiteClip {
 // InputError naming the file and line for a malformed line, an unknown or bad option, a
 // repeated name. Options understood (as `jgpm render` has them): --cameras --width
 // --height --fps --max-frames --ring-radius --sensor-noise --mask-noise --holes --clutter
-// --lighting --drop-rate --width-scale --seed --rig --body-seed --clothing --bag --shadow
+// --lighting --drop-rate --width-scale --seed --rig --body-seed --clothing --bag --shadow --reflection
 // --occluders --calibration-error --walk (--bag and --shadow take no value; --walk once per
 // walker).
 std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::string& source);

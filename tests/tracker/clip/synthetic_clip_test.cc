@@ -427,6 +427,57 @@ TEST(SyntheticClipTest, OccludersHideTheWalkerAndTheShadowDarkensTheFloor) {
   EXPECT_GT(painted, 0);
 }
 
+// A glossy floor: the walker is unchanged (exact masks as without it); the video differs
+// from the matt floor's below the walker, where the reflection is, and the observed masks
+// hold it there; the degradations are the same (the same seed).
+TEST(SyntheticClipTest, AGlossyFloorReflectsTheWalkerBelowTheFeet) {
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions plain = SmallClip();
+  plain.max_frames = 30;
+  plain.degradations.clutter_blobs = 1;
+  ClipOptions glossy = plain;
+  glossy.scene.reflection = 0.3;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, plain, (dir.path() / "plain").string());
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, glossy, (dir.path() / "glossy").string());
+  EXPECT_EQ(ReadGroundTruth(dir.path() / "glossy/ground_truth.json").reflection, 0.3);
+  EXPECT_EQ(ReadGroundTruth(dir.path() / "plain/ground_truth.json").reflection, 0.0);
+  int reflected = 0;
+  double inside = 0, outside = 0;
+  for (const char* camera : {"cam0", "cam1"}) {
+    const std::vector<cv::Mat> plain_video = ReadVideo(dir.path() / "plain" / (std::string(camera) + ".avi"));
+    const std::vector<cv::Mat> video = ReadVideo(dir.path() / "glossy" / (std::string(camera) + ".avi"));
+    ASSERT_EQ(video.size(), plain_video.size());
+    for (int k = 0; k < static_cast<int>(video.size()); ++k) {
+      const cv::Mat walker = ReadMask(dir.path() / "glossy", "masks", camera, k);
+      ASSERT_EQ(cv::countNonZero(walker != ReadMask(dir.path() / "plain", "masks", camera, k)), 0);
+      const cv::Mat observed = ReadMask(dir.path() / "glossy", "observed", camera, k);
+      const cv::Mat plain_observed = ReadMask(dir.path() / "plain", "observed", camera, k);
+      EXPECT_EQ(cv::countNonZero(plain_observed & ~observed), 0);  // only added to
+      const cv::Mat extra = observed & ~plain_observed;
+      const int n = cv::countNonZero(extra);
+      if (n == 0) continue;
+      reflected += n;
+      // Below the walker: no added pixel above the middle of the walker's height.
+      const cv::Rect box = cv::boundingRect(walker);
+      const cv::Rect added = cv::boundingRect(extra);
+      EXPECT_GE(added.y, box.y + box.height / 2) << camera << " frame " << k;
+      cv::Mat difference;
+      cv::absdiff(video[k], plain_video[k], difference);
+      cv::transform(difference, difference, cv::Matx13f(1.f / 3, 1.f / 3, 1.f / 3));
+      inside += cv::mean(difference, extra)[0] * n;
+      cv::Mat near;  // the walker and the reflection, grown past the codec's blur at their edges
+      cv::dilate(extra | walker, near, cv::Mat::ones(9, 9, CV_8U));
+      outside += cv::mean(difference, ~near)[0];
+    }
+  }
+  std::printf("reflection: %d px observed, %.1f grey levels changed there, %.2f elsewhere\n", reflected,
+              reflected ? inside / reflected : 0.0, outside / 60);
+  EXPECT_GT(reflected, 300);
+  EXPECT_GT(inside / std::max(1, reflected), 12);
+  EXPECT_LT(outside / 60, 1.0);
+}
+
 // With calibration error the clip's YAMLs (and its ground truth's cameras, the tracker's)
 // are a calibration's, and its render cameras the ones that made the images: joints
 // project into the exact masks through the render cameras.
