@@ -267,18 +267,16 @@ void ClipScene::RenderShadow(const RayCaster& caster, const std::vector<Capsule>
     }
   }
   const Eigen::Vector3d& origin = caster.centre_in_world_mm();
-  if (origin.y() <= 0) return;
+  cv::Mat floor;
+  VisibleFloor(caster, objects_depth, room_centre_mm, room_radius_mm, &floor);
   for (int v = 0; v < camera.height; ++v) {
     uint8_t* out = shadow->ptr<uint8_t>(v);
-    const float* objects = objects_depth.ptr<float>(v);
+    const uint8_t* on_floor = floor.ptr<uint8_t>(v);
     for (int w = 0; w < camera.width; ++w) {
+      if (!on_floor[w]) continue;
       const Eigen::Vector3d ray = caster.rays().col(static_cast<Eigen::Index>(v) * camera.width + w);
-      if (ray.y() >= -1e-9) continue;
-      const double t = -origin.y() / ray.y();
-      if (t >= objects[w]) continue;
-      const Eigen::Vector3d p = origin + t * ray;
+      const Eigen::Vector3d p = origin + (-origin.y() / ray.y()) * ray;
       if (p.x() < lo.x() || p.x() > hi.x() || p.z() < lo.y() || p.z() > hi.y()) continue;
-      if (Eigen::Vector2d(p.x() - room_centre_mm.x(), p.z() - room_centre_mm.z()).norm() >= room_radius_mm) continue;
       double hit;
       for (const Capsule& c : body) {
         if (IntersectCapsule(p, light_, c, &hit, nullptr)) {
