@@ -1,7 +1,6 @@
 #include "tracker/run/pose_table_cache.h"
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "io/base/checksum.h"
