@@ -249,8 +249,8 @@ void ClipScene::RenderObjects(const RayCaster& caster, cv::Mat* depth_mm, cv::Ma
   }
 }
 
-void ClipScene::RenderShadow(const RayCaster& caster, const std::vector<Capsule>& body, const cv::Mat& objects_depth,
-                             const Eigen::Vector3d& room_centre_mm, double room_radius_mm, cv::Mat* shadow) const {
+void ClipScene::RenderShadow(const RayCaster& caster, const std::vector<Capsule>& body, const cv::Mat& floor,
+                             cv::Mat* shadow) const {
   const Camera& camera = caster.camera();
   shadow->create(camera.height, camera.width, CV_8U);
   shadow->setTo(0);
@@ -267,8 +267,6 @@ void ClipScene::RenderShadow(const RayCaster& caster, const std::vector<Capsule>
     }
   }
   const Eigen::Vector3d& origin = caster.centre_in_world_mm();
-  cv::Mat floor;
-  VisibleFloor(caster, objects_depth, room_centre_mm, room_radius_mm, &floor);
   for (int v = 0; v < camera.height; ++v) {
     uint8_t* out = shadow->ptr<uint8_t>(v);
     const uint8_t* on_floor = floor.ptr<uint8_t>(v);

@@ -88,13 +88,14 @@ class ClipScene {
   // (CV_32F, +inf where none) and its shaded colour (CV_32FC3, BGR).
   void RenderObjects(const RayCaster& caster, cv::Mat* depth_mm, cv::Mat* colour) const;
   // 255 where the pixel sees the floor (nearer than `objects_depth` and, within the room,
-  // nearer than its walls: centre and radius as RenderBackground has them) in the shadow
-  // of `body`; 0 elsewhere, and everywhere without a shadow.
-  void RenderShadow(const RayCaster& caster, const std::vector<Capsule>& body, const cv::Mat& objects_depth,
-                    const Eigen::Vector3d& room_centre_mm, double room_radius_mm, cv::Mat* shadow) const;
-  // 255 where the pixel sees the floor (as above), 0 elsewhere.
+  // nearer than its walls: centre and radius as RenderBackground has them), 0 elsewhere.
+  // The same for every frame of a camera (the objects do not move).
   static void VisibleFloor(const RayCaster& caster, const cv::Mat& objects_depth, const Eigen::Vector3d& room_centre_mm,
                            double room_radius_mm, cv::Mat* floor);
+  // 255 where the pixel sees the floor (`floor`, from VisibleFloor) in the shadow of
+  // `body`; 0 elsewhere, and everywhere without a shadow.
+  void RenderShadow(const RayCaster& caster, const std::vector<Capsule>& body, const cv::Mat& floor,
+                    cv::Mat* shadow) const;
 
  private:
   SceneOptions options_;

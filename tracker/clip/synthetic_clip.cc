@@ -446,8 +446,8 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
     cv::Mat background;
     room8.convertTo(background, CV_32FC3);
     const double reflectance = options.scene.reflection;
-    cv::Mat floor;  // where a glossy floor shows the walkers' reflection
-    if (reflectance > 0) ClipScene::VisibleFloor(caster, objects_depth, room, room_radius, &floor);
+    cv::Mat floor;  // where the walkers' shadow falls and a glossy floor shows their reflection
+    if (options.scene.shadow || reflectance > 0) ClipScene::VisibleFloor(caster, objects_depth, room, room_radius, &floor);
     {
       // The empty room as the camera saw it before anyone walked in, as a lab records it.
       cv::Mat plate = room8.clone(), plate_noise(camera.height, camera.width, CV_32FC3), plate8;
@@ -514,7 +514,7 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
       // Colour: room (with the walkers' shadows), clutter, shaded bodies, passers, then the
       // light and the sensor's noise.
       clutter.Draw(&clutter_mask);
-      scene.RenderShadow(caster, capsules, objects_depth, room, room_radius, &shadow);
+      scene.RenderShadow(caster, capsules, floor, &shadow);
       const cv::Mat* room_now = &background;
       if (options.scene.shadow) {
         background.copyTo(shadowed);

@@ -81,8 +81,9 @@ TEST(ClipScene, ASpheresShadowIsTheAnalyticOne) {
   const std::vector<Capsule> body = {{centre, centre, 300, 300}};
   const RayCaster caster(camera);
   cv::Mat objects_depth(camera.height, camera.width, CV_32F, cv::Scalar(std::numeric_limits<float>::infinity()));
-  cv::Mat shadow;
-  scene.RenderShadow(caster, body, objects_depth, Eigen::Vector3d::Zero(), 12000, &shadow);
+  cv::Mat floor, shadow;
+  ClipScene::VisibleFloor(caster, objects_depth, Eigen::Vector3d::Zero(), 12000, &floor);
+  scene.RenderShadow(caster, body, floor, &shadow);
   // Oracle: the floor point's ray to the light passes within the radius of the centre.
   int agree = 0, shadowed = 0, disagree = 0;
   const Eigen::Vector3d eye = camera.CentreInWorld();
@@ -104,7 +105,7 @@ TEST(ClipScene, ASpheresShadowIsTheAnalyticOne) {
   EXPECT_EQ(disagree, 0);
   // No shadow without the option.
   const ClipScene unlit({}, {camera}, walk, 5);
-  unlit.RenderShadow(caster, body, objects_depth, Eigen::Vector3d::Zero(), 12000, &shadow);
+  unlit.RenderShadow(caster, body, floor, &shadow);
   EXPECT_EQ(cv::countNonZero(shadow), 0);
 }
 
