@@ -92,6 +92,10 @@ BodyModel::BodyModel(const Skeleton& skeleton, const BodyModelOptions& options,
     part.material = spec.material;
     parts_.push_back(part);
   }
+  lhip_ = joint("lhipjoint");
+  rhip_ = joint("rhipjoint");
+  lknee_ = joint("lfemur");
+  rknee_ = joint("rfemur");
   width_scale_ = options.width_scale;
   SetRegionScales(kUnitRegionScales);
 }
@@ -111,6 +115,24 @@ void BodyModel::SetRegionScales(const RegionScales& scales) {
   }
 }
 
+void BodyModel::SetGarment(double garment) {
+  JGPM_CHECK(std::isfinite(garment) && garment >= 0);
+  garment_ = garment;
+}
+
+void BodyModel::PlaceGarment(const Eigen::Matrix3Xd& joint_in_world_mm, double radius_scale,
+                             std::vector<Capsule>* capsules) const {
+  if (!(radius_scale > 0)) return;
+  const Eigen::Vector3d hips = 0.5 * (joint_in_world_mm.col(lhip_) + joint_in_world_mm.col(rhip_));
+  const Eigen::Vector3d knees = 0.5 * (joint_in_world_mm.col(lknee_) + joint_in_world_mm.col(rknee_));
+  Capsule c;
+  c.from_mm = hips;
+  c.to_mm = hips + kGarmentLength * (knees - hips);
+  c.radius_from_mm = kGarmentTopMm * radius_scale;
+  c.radius_to_mm = kGarmentHemMm * radius_scale;
+  capsules->push_back(c);
+}
+
 void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm,
                       std::vector<Capsule>* capsules) const {
   JGPM_CHECK(joint_in_world_mm.cols() == num_joints_);
@@ -123,17 +145,23 @@ void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm,
     c.radius_from_mm = part.radius_from_mm;
     c.radius_to_mm = part.radius_to_mm;
   }
+  PlaceGarment(joint_in_world_mm, width_scale_ * garment_, capsules);
 }
 
 void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm, double scale, const RegionScales& shape,
-                      std::vector<Capsule>* capsules) const {
-  Place(joint_in_world_mm, capsules);
+                      double garment, std::vector<Capsule>* capsules) const {
+  JGPM_CHECK(joint_in_world_mm.cols() == num_joints_);
+  capsules->resize(parts_.size());
   for (size_t i = 0; i < parts_.size(); ++i) {
-    const int region = static_cast<int>(parts_[i].region);
-    const double s = width_scale_ * scale * shape[region];
-    (*capsules)[i].radius_from_mm = parts_[i].base_from_mm * s;
-    (*capsules)[i].radius_to_mm = parts_[i].base_to_mm * s;
+    const BodyPart& part = parts_[i];
+    const double s = width_scale_ * scale * shape[static_cast<int>(part.region)];
+    Capsule& c = (*capsules)[i];
+    c.from_mm = joint_in_world_mm.col(part.from_joint);
+    c.to_mm = joint_in_world_mm.col(part.to_joint);
+    c.radius_from_mm = part.base_from_mm * s;
+    c.radius_to_mm = part.base_to_mm * s;
   }
+  PlaceGarment(joint_in_world_mm, width_scale_ * scale * garment, capsules);
 }
 
 std::vector<Capsule> BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm) const {

@@ -4,6 +4,14 @@
 // so lengths follow the subject's bones; widths are adult defaults times a scale, and
 // times a scale per region of the body (a build: broad shoulders and thin legs; clothes:
 // a coat's wider torso and thighs), which the tracker learns (tracker/filter/body_shape.h).
+//
+// And a garment the limbs cannot draw: a skirt or a coat's tails hang as one cone from the
+// hips round both thighs, filling the space between them that no pose of the legs fills
+// without spreading them. The cone runs from the hips' centre to garment_length of the way
+// to the knees' centre (0.75: between a coat's mid-thigh and a skirt above the knee), of
+// radius garment x (150 mm at the top, 200 mm at the hem: at garment 1 a hem about 0.4 m
+// across, a knee-length A-line skirt's). Garment 0, the default, draws none; the tracker
+// learns it with the build, from 0, so it grows only where the silhouettes ask for it.
 #pragma once
 
 #include <array>
@@ -67,13 +75,17 @@ class BodyModel {
   // Not thread-safe with Place: set between frames.
   void SetRegionScales(const RegionScales& scales);
   const RegionScales& region_scales() const { return region_scales_; }
+  // The garment's scale (0: none, the default; finite and >= 0). Not thread-safe with Place.
+  void SetGarment(double garment);
+  double garment() const { return garment_; }
   int NumParts() const { return static_cast<int>(parts_.size()); }
-  // The parts placed at joint positions (Kinematics::Compute's output, millimetres).
+  // The parts placed at joint positions (Kinematics::Compute's output, millimetres), then
+  // the garment's cone when there is one (capsules beyond NumParts() are garments).
   void Place(const Eigen::Matrix3Xd& joint_in_world_mm, std::vector<Capsule>* capsules) const;
   std::vector<Capsule> Place(const Eigen::Matrix3Xd& joint_in_world_mm) const;
-  // The same with every radius times `scale` and the regions scaled by `shape` instead of
-  // region_scales().
-  void Place(const Eigen::Matrix3Xd& joint_in_world_mm, double scale, const RegionScales& shape,
+  // The same with every radius times `scale`, the regions scaled by `shape` and the
+  // garment `garment` instead of region_scales() and garment().
+  void Place(const Eigen::Matrix3Xd& joint_in_world_mm, double scale, const RegionScales& shape, double garment,
              std::vector<Capsule>* capsules) const;
 
  private:
@@ -81,6 +93,13 @@ class BodyModel {
   int num_joints_ = 0;
   double width_scale_ = 1;
   RegionScales region_scales_ = kUnitRegionScales;
+  double garment_ = 0;
+  int lhip_ = 0, rhip_ = 0, lknee_ = 0, rknee_ = 0;  // the garment's columns
+  void PlaceGarment(const Eigen::Matrix3Xd& joint_in_world_mm, double radius_scale,
+                    std::vector<Capsule>* capsules) const;
 };
+
+constexpr double kGarmentLength = 0.75;                      // of the way from the hips to the knees
+constexpr double kGarmentTopMm = 150, kGarmentHemMm = 200;  // radii at garment 1
 
 }  // namespace jgpm

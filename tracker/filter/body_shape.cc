@@ -15,6 +15,8 @@ bool BodyShapeOptions::Check(std::string* why) const {
   else if (!(min_width > 0 && min_width <= 1 && max_width >= 1 && min_length > 0 && min_length <= 1 && max_length >= 1))
     problem = "body shape bounds must hold 1";
   else if (!(floor_probe_mm > 0 && max_floor_mm >= 0)) problem = "body shape floor probe must be > 0 and bound >= 0";
+  else if (!(garment_probe > 0 && garment_rate >= 0 && garment_rate <= 1 && max_garment >= 0))
+    problem = "body shape garment probe must be > 0, its rate in [0, 1] and its bound >= 0";
   if (problem && why) *why = problem;
   return problem == nullptr;
 }
@@ -49,20 +51,24 @@ void BodyShape::Update(const Costs& costs, bool several_views) {
   struct Scale {
     std::function<double&(Build&)> at;
     bool logarithmic;
-    double probe, lo, hi;
+    double probe, lo, hi, rate;
   };
+  const double rate = options_.rate;
   std::vector<Scale> scales;
   for (int r = 1; r < kNumBodyRegions; ++r)  // the torso is the reference
     scales.push_back({[r](Build& b) -> double& { return b.widths[r]; }, true, std::log1p(options_.width_probe),
-                      options_.min_width, options_.max_width});
+                      options_.min_width, options_.max_width, rate});
   if (options_.lengths) {
     for (double Proportions::*limb : {&Proportions::legs, &Proportions::arms})
       scales.push_back({[limb](Build& b) -> double& { return b.lengths.*limb; }, true,
-                        std::log1p(options_.length_probe), options_.min_length, options_.max_length});
+                        std::log1p(options_.length_probe), options_.min_length, options_.max_length, rate});
   }
   if (several_views)
     scales.push_back({[](Build& b) -> double& { return b.floor_mm; }, false, options_.floor_probe_mm,
-                      -options_.max_floor_mm, options_.max_floor_mm});
+                      -options_.max_floor_mm, options_.max_floor_mm, rate});
+  if (options_.garment)
+    scales.push_back({[](Build& b) -> double& { return b.garment; }, false, options_.garment_probe, 0,
+                      options_.max_garment, options_.garment_rate});
   const auto moved = [](const Scale& s, Build b, double step) {
     double& v = s.at(b);
     v = s.logarithmic ? v * std::exp(step) : v + step;
@@ -85,7 +91,7 @@ void BodyShape::Update(const Costs& costs, bool several_views) {
     const double h = scales[k].probe, up = cost[1 + 2 * k], down = cost[2 + 2 * k];
     const double slope = (up - down) / (2 * h), curvature = (up + down - 2 * here) / (h * h);
     const double step = std::clamp(curvature > 0 ? -slope / curvature : (slope > 0 ? -h : slope < 0 ? h : 0), -h, h);
-    Build stepped = moved(scales[k], build_, options_.rate * step);
+    Build stepped = moved(scales[k], build_, scales[k].rate * step);
     scales[k].at(next) = std::clamp(scales[k].at(stepped), scales[k].lo, scales[k].hi);
   }
   build_ = next;

@@ -20,6 +20,14 @@
 // the same way, in millimetres, when two cameras or more see the person: in one view a
 // lower floor and a person farther away look alike.
 //
+// The garment (tracker/body/body_model.h: a cone from the hips round both thighs) is
+// learnt the same way from 0, additively: without it a skirt's or a coat's cloth between
+// the thighs could only be explained by legs spread apart and frozen there, and by
+// thighs and shins at their widest bound (the skirted tuning walker: root-relative 54 ->
+// 116 mm against the same walk bare). Its probe is a fifth of the scale at which the hem
+// is 0.4 m across; it moves by half the step (garment_rate) so that it is grown within
+// the start window (15 frames) before the legs are fitted to the cloth.
+//
 // Rule for the constants: a probe is about half the spread of what it measures, beyond
 // the silhouettes' noise from one frame to the next: widths 10% (the realism clips' builds
 // spread +-25%, tracker/clip/clip_body.h), lengths 4% (the CMU subjects' limbs, +-7%), the
@@ -47,6 +55,8 @@ struct BodyShapeOptions {
   double min_width = 0.7, max_width = 1.4;
   double min_length = 0.85, max_length = 1.15;
   double floor_probe_mm = 20, max_floor_mm = 300;
+  bool garment = true;  // false: no garment is learnt (the build of the bare body)
+  double garment_probe = 0.2, garment_rate = 0.5, max_garment = 1.5;
 
   bool Check(std::string* why) const;
 };
@@ -55,6 +65,7 @@ struct Build {
   RegionScales widths = kUnitRegionScales;  // widths[torso] stays 1
   Proportions lengths;
   double floor_mm = 0;  // the floor's height under the person
+  double garment = 0;   // tracker/body/body_model.h's garment scale (0: none)
   bool operator==(const Build&) const = default;
 };
 
@@ -78,7 +89,8 @@ class BodyShape {
   using Costs = std::function<std::vector<double>(const std::vector<Build>& builds)>;
   // One frame: asks the costs of the build as it is and of it with each scale fitted
   // larger and smaller (4 widths, 2 lengths unless known, the floor when `several_views`:
-  // two cameras or more see the person), once. Costs that are not finite leave the build
+  // two cameras or more see the person, the garment; a garment probed below 0 draws none),
+  // once. Costs that are not finite leave the build
   // as it is.
   void Update(const Costs& costs, bool several_views = false);
   // The same, one build at a time.

@@ -527,7 +527,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   {
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
     std::vector<Capsule> capsules;
-    body_.Place(out.joints_mm, out.size * out.width, out.build.widths, &capsules);
+    body_.Place(out.joints_mm, out.size * out.width, out.build.widths, out.build.garment, &capsules);
     likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
     if (out.MeanIou() >= options_.lost_iou) {
       if (alignment_.active()) AlignViews(capsules, observations, out);
@@ -547,7 +547,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
               for (int i = begin; i < end; ++i) {
                 placer_.Place(out.pose_deg.data(), out.joints_mm(0, 0), out.joints_mm(2, 0), out.heading_rad,
                               out.size, builds[i].lengths, builds[i].floor_mm, &joints);
-                body_.Place(joints, out.size * out.width, builds[i].widths, &drawn);
+                body_.Place(joints, out.size * out.width, builds[i].widths, builds[i].garment, &drawn);
                 likelihood_.Cost(drawn, observations, &workspaces[worker], &scores);
                 costs[i] = ShapeCost(scores);
               }
@@ -654,6 +654,7 @@ bool Tracker::InView(const Eigen::Matrix3Xd& joints) const {
 void Tracker::ApplyBuild() {
   const Build& build = shape_.build();
   body_.SetRegionScales(build.widths);
+  body_.SetGarment(build.garment);
   state_model_->SetProportions(build.lengths);
   state_model_->SetFloor(build.floor_mm);
   placer_.SetProportions(build.lengths);
@@ -700,7 +701,7 @@ void Tracker::ExactPose(const Eigen::VectorXd& state, Eigen::VectorXd* pose_deg,
 void Tracker::DrawEstimate(const TrackedFrame& frame, std::vector<cv::Mat>* masks) const {
   if (frame.state.size() == 0 || frame.joints_mm.cols() == 0) return;
   std::vector<Capsule> capsules;
-  body_.Place(frame.joints_mm, frame.size * frame.width, frame.build.widths, &capsules);
+  body_.Place(frame.joints_mm, frame.size * frame.width, frame.build.widths, frame.build.garment, &capsules);
   for (size_t c = 0; c < cameras_.size() && c < masks->size(); ++c) {
     BitMask drawn(cameras_[c].width, cameras_[c].height);
     likelihood_.renderer(static_cast<int>(c)).Draw(capsules, &drawn);

@@ -30,7 +30,7 @@ OverlayVideos::~OverlayVideos() {
 OverlayVideos::Job OverlayVideos::MakeJob(const Frame& frame, const TrackedFrame& estimate) {
   Job job;
   job.estimate = estimate;
-  if (estimate.state.size()) body_.Place(estimate.joints_mm, estimate.size * estimate.width, estimate.build.widths, &job.capsules);
+  if (estimate.state.size()) body_.Place(estimate.joints_mm, estimate.size * estimate.width, estimate.build.widths, estimate.build.garment, &job.capsules);
   job.dimmed = frame.dropped;
   for (size_t c = 0; c < cameras_.size(); ++c) {
     if (!frame.dropped && c < frame.images.size()) last_[c] = frame.images[c];
@@ -78,7 +78,7 @@ std::vector<cv::Mat> OverlayVideos::AddPeople(const Frame& frame,
   for (const auto& [id, estimate] : people) {
     OverlayPerson p{id, estimate, {}};
     if (estimate.state.size())
-      body_of(id).Place(estimate.joints_mm, estimate.size * estimate.width, estimate.build.widths, &p.capsules);
+      body_of(id).Place(estimate.joints_mm, estimate.size * estimate.width, estimate.build.widths, estimate.build.garment, &p.capsules);
     job.people.push_back(std::move(p));
   }
   std::vector<cv::Mat> shown;

@@ -135,7 +135,8 @@ json EstimateJson(const TrackRun& run, const TrackedFrame& f) {
     j["build"] = {{"widths", widths},
                   {"legs", f.build.lengths.legs},
                   {"arms", f.build.lengths.arms},
-                  {"floor_mm", f.build.floor_mm}};
+                  {"floor_mm", f.build.floor_mm},
+                  {"garment", f.build.garment}};
     json coordinates = json::object();
     for (size_t c = 0; c < run.coordinate_names.size() && static_cast<int>(c) < k; ++c) {
       coordinates[run.coordinate_names[c]] = f.state[c];

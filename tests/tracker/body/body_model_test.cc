@@ -86,7 +86,7 @@ TEST(BodyModelTest, RegionScalesScaleTheirRegionsPartsOnly) {
   // Placing with a shape and a scale equals setting the shape and scaling the radii.
   const Eigen::Matrix3Xd rest = Kinematics(skeleton).Compute(std::vector<double>(skeleton.NumChannels(), 0.0).data());
   std::vector<Capsule> direct;
-  normal.Place(rest, 1.5, shape, &direct);
+  normal.Place(rest, 1.5, shape, 0, &direct);
   const std::vector<Capsule> set = shaped.Place(rest);
   for (size_t i = 0; i < set.size(); ++i) {
     EXPECT_DOUBLE_EQ(direct[i].radius_from_mm, 1.5 * set[i].radius_from_mm);
@@ -94,6 +94,35 @@ TEST(BodyModelTest, RegionScalesScaleTheirRegionsPartsOnly) {
     EXPECT_EQ(direct[i].from_mm, set[i].from_mm);
   }
   EXPECT_EQ(BodyRegionName(BodyRegion::kThighs), "thighs");
+}
+
+// The garment, by hand: a cone from the hips' centre kGarmentLength of the way to the
+// knees' centre, radii times the garment, the width scale and the placing scale; none at 0.
+TEST(BodyModelTest, TheGarmentHangsFromTheHipsTowardsTheKnees) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/07/07.asf");
+  BodyModelOptions broad;
+  broad.width_scale = 1.2;
+  BodyModel body(skeleton, broad, "07.asf");
+  const std::vector<double> pose(skeleton.NumChannels(), 0.0);
+  const Eigen::Matrix3Xd rest = Kinematics(skeleton).Compute(pose.data());
+  EXPECT_EQ(body.Place(rest).size(), static_cast<size_t>(body.NumParts()));
+  body.SetGarment(0.8);
+  const std::vector<Capsule> dressed = body.Place(rest);
+  ASSERT_EQ(dressed.size(), static_cast<size_t>(body.NumParts()) + 1);
+  const Eigen::Vector3d hips = 0.5 * (rest.col(skeleton.FindBone("lhipjoint")) + rest.col(skeleton.FindBone("rhipjoint")));
+  const Eigen::Vector3d knees = 0.5 * (rest.col(skeleton.FindBone("lfemur")) + rest.col(skeleton.FindBone("rfemur")));
+  const Capsule& garment = dressed.back();
+  EXPECT_LT((garment.from_mm - hips).norm(), 1e-9);
+  EXPECT_LT((garment.to_mm - (hips + 0.75 * (knees - hips))).norm(), 1e-9);
+  EXPECT_DOUBLE_EQ(garment.radius_from_mm, 150 * 0.8 * 1.2);
+  EXPECT_DOUBLE_EQ(garment.radius_to_mm, 200 * 0.8 * 1.2);
+  // Placed with an explicit build: its own garment, times the placing scale.
+  std::vector<Capsule> placed;
+  body.Place(rest, 1.5, kUnitRegionScales, 0.5, &placed);
+  ASSERT_EQ(placed.size(), dressed.size());
+  EXPECT_DOUBLE_EQ(placed.back().radius_to_mm, 200 * 0.5 * 1.2 * 1.5);
+  body.Place(rest, 1.5, kUnitRegionScales, 0, &placed);
+  EXPECT_EQ(placed.size(), static_cast<size_t>(body.NumParts()));
 }
 
 TEST(BodyModelTest, BadInputIsNamed) {

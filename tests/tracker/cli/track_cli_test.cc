@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -125,6 +126,8 @@ TEST(TrackCli, TracksACleanClip) {
     EXPECT_GE(legs.back(), 0.85);
     EXPECT_LE(legs.back(), 1.15);
     EXPECT_LE(std::abs(frame["build"]["floor_mm"].get<double>()), 300);
+    EXPECT_GE(frame["build"]["garment"].get<double>(), 0);  // body_shape.h's bounds
+    EXPECT_LE(frame["build"]["garment"].get<double>(), 1.5);
   }
   std::nth_element(legs.begin(), legs.begin() + legs.size() / 2, legs.end());
   std::nth_element(arms.begin(), arms.begin() + arms.size() / 2, arms.end());

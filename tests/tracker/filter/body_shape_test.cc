@@ -14,6 +14,7 @@
 #include "io/mocap/kinematics.h"
 #include "test_support.h"
 #include "tracker/body/ray_caster.h"
+#include "tracker/clip/clip_body.h"
 #include "tracker/filter/likelihood.h"
 #include "tracker/state/proportions.h"
 
@@ -36,7 +37,7 @@ TEST(BodyShapeTest, GoesToAQuadraticsMinimumRelativeToTheTorso) {
   best.floor_mm = 45;
   BodyShape shape;
   shape.Update(cost, true);
-  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2 + 1));
+  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2 + 1 + 1));
   EXPECT_NEAR(shape.build().floor_mm, 0.1 * 20, 1e-9);  // a tenth of one probe (20 mm)
   // One update moves each scale a tenth of the way in the logarithm (the parabola of a
   // quadratic is exact, but a step is at most one probe); the torso stays.
@@ -52,8 +53,9 @@ TEST(BodyShapeTest, GoesToAQuadraticsMinimumRelativeToTheTorso) {
   // Seen by one camera only, the floor stays where it is.
   calls = 0;
   shape.Update([&](const Build& b) { return cost(b) + 1e-2 * b.floor_mm; });
-  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2));
+  EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1 + 2 + 1));
   EXPECT_NEAR(shape.build().floor_mm, 45, 1e-3);
+  EXPECT_EQ(shape.build().garment, 0);  // the cost does not ask for one
   for (int r = 0; r < kNumBodyRegions; ++r) EXPECT_NEAR(shape.build().widths[r], best.widths[r], 1e-3) << r;
   EXPECT_NEAR(shape.build().lengths.legs, 0.93, 1e-3);
   EXPECT_NEAR(shape.build().lengths.arms, 1.06, 1e-3);
@@ -75,10 +77,12 @@ TEST(BodyShapeTest, NotFiniteCostsAndDisabledLeaveItAlone) {
   // Known lengths: only the widths are fitted.
   BodyShapeOptions widths_only;
   widths_only.lengths = false;
+  widths_only.garment = false;
   BodyShape widths(widths_only);
   calls = 0;
-  widths.Update([&](const Build& b) { return ++calls, b.lengths.legs + b.widths[3]; });
+  widths.Update([&](const Build& b) { return ++calls, b.lengths.legs + b.widths[3] - b.garment; });
   EXPECT_EQ(calls, 1 + 2 * (kNumBodyRegions - 1));
+  EXPECT_EQ(widths.build().garment, 0);
   EXPECT_EQ(widths.build().lengths, Proportions());
   EXPECT_LT(widths.build().widths[3], 1);
   BodyShapeOptions bad;
@@ -137,7 +141,7 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
     }
     shape.Update(
         [&](const Build& b) {
-          body.Place(joints_of(f, b), torso, b.widths, &capsules);
+          body.Place(joints_of(f, b), torso, b.widths, b.garment, &capsules);
           std::vector<CameraScore> scores;
           likelihood.Cost(capsules, observed, &workspace, &scores);
           return ShapeCost(scores);
@@ -156,6 +160,74 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
   EXPECT_NEAR(found.lengths.arms, truth.lengths.arms, 0.02);
   std::printf("floor   truth %.1f mm  found %.1f mm\n", truth.floor_mm, found.floor_mm);
   EXPECT_NEAR(found.floor_mm, truth.floor_mm, 8);
+  // A bare walker: the cloth between the thighs is not there to explain.
+  std::printf("garment truth 0  found %.3f\n", found.garment);
+  EXPECT_LT(found.garment, 0.15);
+}
+
+// A walker in a skirt (the clips' cone, tracker/clip/clip_body.h, a shape the garment only
+// approximates). Without a garment the cloth between the thighs pulls the thighs' and
+// shins' widths up; with it the garment grows to about the skirt's hem, the shins stay
+// near their width, and the true pose is explained better than by the bare fit.
+TEST(BodyShapeTest, ASkirtIsLearntAsAGarmentNotAsFatLegs) {
+  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/35/35_01.amc", skeleton);
+  const Kinematics kinematics(skeleton);
+  const Eigen::Matrix3Xd first = kinematics.Compute(motion.Frame(100));
+  const Eigen::Vector3d at(first(0, 0), 900, first(2, 0));
+  const std::vector<Camera> cameras = {LookAtCamera("side", 320, 240, 330, at + Eigen::Vector3d(4200, 600, 0), at),
+                                       LookAtCamera("front", 320, 240, 330, at + Eigen::Vector3d(500, 600, 4200), at)};
+  ClipBodyOptions skirt;
+  skirt.clothing = Clothing::kSkirt;
+  const ClipBody walker(skeleton, skirt, "35.asf");
+  const BodyModel body(skeleton, {}, "35.asf");
+  const SilhouetteLikelihood likelihood(cameras);
+  SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+  std::vector<std::vector<CameraObservation>> frames;
+  for (int f = 100; f < 160; ++f) {
+    std::vector<Capsule> shapes;
+    walker.Place(kinematics.Compute(motion.Frame(f)), &shapes);
+    std::vector<CameraObservation> observed;
+    for (const Camera& camera : cameras) {
+      BodyImage image;
+      RayCaster(camera).Render(shapes, &image);
+      const cv::Mat mask = image.Mask();
+      cv::Rect box = cv::boundingRect(mask);
+      observed.push_back(likelihood.Observe(mask, cv::Rect(box.x - 20, box.y - 20, box.width + 40, box.height + 40)));
+    }
+    frames.push_back(std::move(observed));
+  }
+  std::vector<Capsule> capsules;
+  const auto cost = [&](int k, const Build& b) {
+    body.Place(kinematics.Compute(motion.Frame(100 + k)), 1.0, b.widths, b.garment, &capsules);
+    std::vector<CameraScore> scores;
+    likelihood.Cost(capsules, frames[k], &workspace, &scores);
+    return ShapeCost(scores);
+  };
+  const auto fit = [&](bool garment) {
+    BodyShapeOptions options;
+    options.lengths = false;
+    options.garment = garment;
+    BodyShape shape(options);
+    for (int k = 0; k < static_cast<int>(frames.size()); ++k)
+      shape.Update([&](const Build& b) { return cost(k, b); }, true);
+    double mean = 0;  // the last ten frames' cost with the build found
+    for (int k = 50; k < 60; ++k) mean += cost(k, shape.build()) / 10;
+    return std::make_pair(shape.build(), mean);
+  };
+  const auto [bare, bare_cost] = fit(false);
+  const auto [dressed, dressed_cost] = fit(true);
+  const int shins = static_cast<int>(BodyRegion::kShins), thighs = static_cast<int>(BodyRegion::kThighs);
+  std::printf("bare:    thighs %.2f shins %.2f cost %.3f\ndressed: thighs %.2f shins %.2f garment %.2f cost %.3f\n",
+              bare.widths[thighs], bare.widths[shins], bare_cost, dressed.widths[thighs], dressed.widths[shins],
+              dressed.garment, dressed_cost);
+  // The skirt's hem (245 mm at 85% of the way to the knees) against the garment's
+  // (kGarmentHemMm at kGarmentLength): within a quarter.
+  const double hem_at_garment_length = 150 + (245 - 150) * kGarmentLength / 0.85;
+  EXPECT_NEAR(dressed.garment * kGarmentHemMm, hem_at_garment_length, 0.25 * hem_at_garment_length);
+  EXPECT_LT(dressed.widths[shins], 1.1);
+  EXPECT_GT(bare.widths[thighs], dressed.widths[thighs]);
+  EXPECT_LT(dressed_cost, 0.8 * bare_cost);
 }
 
 }  // namespace

@@ -782,31 +782,39 @@ TEST(Tracker, TheSeedReachesTheRefinement) {
 // the body's front from its back; the heading's own noise (1 degree a frame, 6 for a
 // tenth) reaches 180 degrees in no clip, so only the turns to any heading
 // (TrackerOptions::turn_every) can. Before them the heading stayed 164-177 degrees off.
+// When they win is chance (the frames to come round, seeds 1-8: 1 to 22), so six seeds
+// are run: each must come round and stay (within 30 degrees to the end) before the last
+// frames, and on average within half the clip.
 TEST(Tracker, AWalkerFacingAwayFromTheParticlesIsComeRoundTo) {
   const Fixture& f = Shared();
-  Tracker tracker(*f.loaded, f.truth.cameras, [] {
-    TrackerOptions options;
-    options.annealing.particles = 150;
-    options.annealing.seed = 3;
-    return options;
-  }());
-  InitialGuess guess = TruthGuess(f.truth, *f.loaded, tracker.state_model());
-  const double truth_heading = guess.heading_rad;
-  guess.heading_rad += std::numbers::pi;
-  guess.coordinates.resize(0);  // the pose from the masks
-  tracker.StartAt(guess);
-  const auto off_deg = [&](double heading) {
-    return std::abs(std::remainder(heading - truth_heading, 2 * std::numbers::pi)) * 180 / std::numbers::pi;
-  };
-  std::string line;
-  double last = 0;
-  for (int k = 0; k < kFrames; ++k) {
-    const TrackedFrame out = tracker.Step(ClipFrameAt(f.truth, f.clip, k));
-    line += " " + std::to_string(static_cast<int>(off_deg(out.heading_rad)));
-    if (k >= kFrames - 5) last += off_deg(out.heading_rad) / 5;
+  double mean_frames = 0;
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    Tracker tracker(*f.loaded, f.truth.cameras, [&] {
+      TrackerOptions options;
+      options.annealing.particles = 150;
+      options.annealing.seed = seed;
+      return options;
+    }());
+    InitialGuess guess = TruthGuess(f.truth, *f.loaded, tracker.state_model());
+    const double truth_heading = guess.heading_rad;
+    guess.heading_rad += std::numbers::pi;
+    guess.coordinates.resize(0);  // the pose from the masks
+    tracker.StartAt(guess);
+    const auto off_deg = [&](double heading) {
+      return std::abs(std::remainder(heading - truth_heading, 2 * std::numbers::pi)) * 180 / std::numbers::pi;
+    };
+    std::string line;
+    int round = 0;  // the first frame from which the heading stays within 30 degrees
+    for (int k = 0; k < kFrames; ++k) {
+      const TrackedFrame out = tracker.Step(ClipFrameAt(f.truth, f.clip, k));
+      line += " " + std::to_string(static_cast<int>(off_deg(out.heading_rad)));
+      if (off_deg(out.heading_rad) >= 30) round = k + 1;
+    }
+    std::printf("seed %d: heading off by (deg):%s\n", static_cast<int>(seed), line.c_str());
+    EXPECT_LT(round, kFrames - 2) << "seed " << seed;
+    mean_frames += round / 6.0;
   }
-  std::printf("heading off by (deg):%s\n", line.c_str());
-  EXPECT_LT(last, 30);
+  EXPECT_LT(mean_frames, kFrames / 2.0);
 }
 
 // Two cameras whose blobs hold a shadow cast towards them, attached at the feet, and
