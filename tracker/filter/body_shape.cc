@@ -15,7 +15,8 @@ bool BodyShapeOptions::Check(std::string* why) const {
   else if (!(min_width > 0 && min_width <= 1 && max_width >= 1 && min_length > 0 && min_length <= 1 && max_length >= 1))
     problem = "body shape bounds must hold 1";
   else if (!(floor_probe_mm > 0 && max_floor_mm >= 0)) problem = "body shape floor probe must be > 0 and bound >= 0";
-  else if (!(garment_probe > 0 && garment_rate >= 0 && garment_rate <= 1 && max_garment >= 0))
+  else if (!(garment_probe > 0 && garment_rate >= 0 && garment_rate <= 1 && max_garment >= 0 &&
+         garment_drawn >= 0))
     problem = "body shape garment probe must be > 0, its rate in [0, 1] and its bound >= 0";
   if (problem && why) *why = problem;
   return problem == nullptr;
@@ -33,6 +34,12 @@ double ShapeCost(const std::vector<CameraScore>& scores) {
 BodyShape::BodyShape(const BodyShapeOptions& options) : options_(options) {}
 
 void BodyShape::Reset() { build_ = Build(); }
+
+Build BodyShape::drawn() const {
+  Build b = build_;
+  if (b.garment < options_.garment_drawn) b.garment = 0;
+  return b;
+}
 
 void BodyShape::Update(const std::function<double(const Build&)>& cost, bool several_views) {
   Update(

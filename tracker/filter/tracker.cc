@@ -523,7 +523,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     out.evaluations += r.evaluations;
     placer_.Place(out.pose_deg.data(), r.x_mm, r.z_mm, r.heading_rad, r.size, &out.joints_mm);
   }
-  out.build = shape_.build();
+  out.build = shape_.drawn();
   {
     SilhouetteLikelihood::Workspace workspace = likelihood_.NewWorkspace();
     std::vector<Capsule> capsules;
@@ -652,7 +652,7 @@ bool Tracker::InView(const Eigen::Matrix3Xd& joints) const {
 }
 
 void Tracker::ApplyBuild() {
-  const Build& build = shape_.build();
+  const Build build = shape_.drawn();
   body_.SetRegionScales(build.widths);
   body_.SetGarment(build.garment);
   state_model_->SetProportions(build.lengths);

@@ -63,6 +63,20 @@ TEST(BodyShapeTest, GoesToAQuadraticsMinimumRelativeToTheTorso) {
   EXPECT_EQ(shape.build(), Build());
 }
 
+// The garment goes to a quadratic's minimum from 0 (a probe below 0 draws none: the cost
+// there is the cost at 0), and is drawn only from garment_drawn on.
+TEST(BodyShapeTest, TheGarmentIsLearntFromNoneAndDrawnOnceItIsWiderThanTheLegs) {
+  for (const double best : {0.3, 0.9}) {
+    BodyShape shape;
+    for (int i = 0; i < 100; ++i) shape.Update([&](const Build& b) { return std::pow(std::max(b.garment, 0.0) - best, 2); });
+    EXPECT_NEAR(shape.build().garment, best, 1e-3);
+    EXPECT_EQ(shape.drawn().garment, best < BodyShapeOptions().garment_drawn ? 0 : shape.build().garment);
+    Build rest = shape.drawn();
+    rest.garment = shape.build().garment;
+    EXPECT_EQ(rest, shape.build());  // nothing else differs
+  }
+}
+
 TEST(BodyShapeTest, NotFiniteCostsAndDisabledLeaveItAlone) {
   BodyShape shape;
   shape.Update([](const Build& b) { return b.lengths.arms > 1.01 ? std::nan("") : 1.0 - b.widths[1]; });
