@@ -7,7 +7,7 @@
 //
 // And a garment the limbs cannot draw: a skirt or a coat's tails hang as one cone from the
 // hips round both thighs, filling the space between them that no pose of the legs fills
-// without spreading them. The cone runs from the hips' centre to garment_length of the way
+// without spreading them. The cone runs from the hips' centre kGarmentLength of the way
 // to the knees' centre (0.75: between a coat's mid-thigh and a skirt above the knee), of
 // radius garment x (150 mm at the top, 200 mm at the hem: at garment 1 a hem about 0.4 m
 // across, a knee-length A-line skirt's). Garment 0, the default, draws none; the tracker

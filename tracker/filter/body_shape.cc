@@ -15,9 +15,8 @@ bool BodyShapeOptions::Check(std::string* why) const {
   else if (!(min_width > 0 && min_width <= 1 && max_width >= 1 && min_length > 0 && min_length <= 1 && max_length >= 1))
     problem = "body shape bounds must hold 1";
   else if (!(floor_probe_mm > 0 && max_floor_mm >= 0)) problem = "body shape floor probe must be > 0 and bound >= 0";
-  else if (!(garment_probe > 0 && garment_rate >= 0 && garment_rate <= 1 && max_garment >= 0 &&
-         garment_drawn >= 0))
-    problem = "body shape garment probe must be > 0, its rate in [0, 1] and its bound >= 0";
+  else if (!(garment_probe > 0 && garment_rate >= 0 && garment_rate <= 1 && max_garment >= 0 && garment_drawn >= 0))
+    problem = "body shape garment probe must be > 0, its rate in [0, 1], its bound and where it is drawn >= 0";
   if (problem && why) *why = problem;
   return problem == nullptr;
 }

@@ -97,8 +97,7 @@ class BodyShape {
   // One frame: asks the costs of the build as it is and of it with each scale fitted
   // larger and smaller (4 widths, 2 lengths unless known, the floor when `several_views`:
   // two cameras or more see the person, the garment; a garment probed below 0 draws none),
-  // once. Costs that are not finite leave the build
-  // as it is.
+  // once. Costs that are not finite leave the build as it is.
   void Update(const Costs& costs, bool several_views = false);
   // The same, one build at a time.
   void Update(const std::function<double(const Build&)>& cost, bool several_views = false);

@@ -106,14 +106,38 @@ TEST(BodyShapeTest, NotFiniteCostsAndDisabledLeaveItAlone) {
   EXPECT_NE(why.find("probe"), std::string::npos);
 }
 
+// Subject 35's walk seen from the side and the front, 4.2 m away.
+struct SideAndFront {
+  Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
+  Motion motion = ReadAmc(test::CmuRoot() / "subjects/35/35_01.amc", skeleton);
+  Kinematics kinematics{skeleton};
+  std::vector<Camera> cameras;
+  SideAndFront() {
+    const Eigen::Matrix3Xd first = kinematics.Compute(motion.Frame(100));
+    const Eigen::Vector3d at(first(0, 0), 900, first(2, 0));
+    cameras = {LookAtCamera("side", 320, 240, 330, at + Eigen::Vector3d(4200, 600, 0), at),
+               LookAtCamera("front", 320, 240, 330, at + Eigen::Vector3d(500, 600, 4200), at)};
+  }
+  // The exact masks of `shapes` (ray cast), each observed in a box 20 px about the person.
+  std::vector<CameraObservation> Observe(const SilhouetteLikelihood& likelihood, const std::vector<Capsule>& shapes) const {
+    std::vector<CameraObservation> observed;
+    for (const Camera& camera : cameras) {
+      BodyImage image;
+      RayCaster(camera).Render(shapes, &image);
+      const cv::Mat mask = image.Mask();
+      const cv::Rect box = cv::boundingRect(mask);
+      observed.push_back(likelihood.Observe(mask, cv::Rect(box.x - 20, box.y - 20, box.width + 40, box.height + 40)));
+    }
+    return observed;
+  }
+};
+
 TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
-  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
-  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/35/35_01.amc", skeleton);
-  const Kinematics kinematics(skeleton);
-  const Eigen::Matrix3Xd first = kinematics.Compute(motion.Frame(100));
-  const Eigen::Vector3d at(first(0, 0), 900, first(2, 0));
-  const std::vector<Camera> cameras = {LookAtCamera("side", 320, 240, 330, at + Eigen::Vector3d(4200, 600, 0), at),
-                                       LookAtCamera("front", 320, 240, 330, at + Eigen::Vector3d(500, 600, 4200), at)};
+  const SideAndFront scene;
+  const Skeleton& skeleton = scene.skeleton;
+  const Motion& motion = scene.motion;
+  const Kinematics& kinematics = scene.kinematics;
+  const std::vector<Camera>& cameras = scene.cameras;
   // A broad torso, a small head, thin arms, heavy thighs, thin shins; short legs and long
   // arms. The fit is given the torso's width (the particles' width finds it) and must find
   // the rest relative to it.
@@ -145,14 +169,7 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
   BodyShape shape;
   std::vector<Capsule> capsules;
   for (int f = 100; f < 160; ++f) {
-    std::vector<CameraObservation> observed;
-    for (const Camera& camera : cameras) {
-      BodyImage image;
-      RayCaster(camera).Render(walker.Place(joints_of(f, truth)), &image);
-      const cv::Mat mask = image.Mask();
-      cv::Rect box = cv::boundingRect(mask);
-      observed.push_back(likelihood.Observe(mask, cv::Rect(box.x - 20, box.y - 20, box.width + 40, box.height + 40)));
-    }
+    const std::vector<CameraObservation> observed = scene.Observe(likelihood, walker.Place(joints_of(f, truth)));
     shape.Update(
         [&](const Build& b) {
           body.Place(joints_of(f, b), torso, b.widths, b.garment, &capsules);
@@ -184,13 +201,11 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
 // shins' widths up; with it the garment grows to about the skirt's hem, the shins stay
 // near their width, and the true pose is explained better than by the bare fit.
 TEST(BodyShapeTest, ASkirtIsLearntAsAGarmentNotAsFatLegs) {
-  const Skeleton skeleton = ReadAsf(test::CmuRoot() / "subjects/35/35.asf");
-  const Motion motion = ReadAmc(test::CmuRoot() / "subjects/35/35_01.amc", skeleton);
-  const Kinematics kinematics(skeleton);
-  const Eigen::Matrix3Xd first = kinematics.Compute(motion.Frame(100));
-  const Eigen::Vector3d at(first(0, 0), 900, first(2, 0));
-  const std::vector<Camera> cameras = {LookAtCamera("side", 320, 240, 330, at + Eigen::Vector3d(4200, 600, 0), at),
-                                       LookAtCamera("front", 320, 240, 330, at + Eigen::Vector3d(500, 600, 4200), at)};
+  const SideAndFront scene;
+  const Skeleton& skeleton = scene.skeleton;
+  const Motion& motion = scene.motion;
+  const Kinematics& kinematics = scene.kinematics;
+  const std::vector<Camera>& cameras = scene.cameras;
   ClipBodyOptions skirt;
   skirt.clothing = Clothing::kSkirt;
   const ClipBody walker(skeleton, skirt, "35.asf");
@@ -201,15 +216,7 @@ TEST(BodyShapeTest, ASkirtIsLearntAsAGarmentNotAsFatLegs) {
   for (int f = 100; f < 160; ++f) {
     std::vector<Capsule> shapes;
     walker.Place(kinematics.Compute(motion.Frame(f)), &shapes);
-    std::vector<CameraObservation> observed;
-    for (const Camera& camera : cameras) {
-      BodyImage image;
-      RayCaster(camera).Render(shapes, &image);
-      const cv::Mat mask = image.Mask();
-      cv::Rect box = cv::boundingRect(mask);
-      observed.push_back(likelihood.Observe(mask, cv::Rect(box.x - 20, box.y - 20, box.width + 40, box.height + 40)));
-    }
-    frames.push_back(std::move(observed));
+    frames.push_back(scene.Observe(likelihood, shapes));
   }
   std::vector<Capsule> capsules;
   const auto cost = [&](int k, const Build& b) {
