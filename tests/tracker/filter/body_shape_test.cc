@@ -134,10 +134,6 @@ struct SideAndFront {
 
 TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
   const SideAndFront scene;
-  const Skeleton& skeleton = scene.skeleton;
-  const Motion& motion = scene.motion;
-  const Kinematics& kinematics = scene.kinematics;
-  const std::vector<Camera>& cameras = scene.cameras;
   // A broad torso, a small head, thin arms, heavy thighs, thin shins; short legs and long
   // arms. The fit is given the torso's width (the particles' width finds it) and must find
   // the rest relative to it.
@@ -148,14 +144,14 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
   truth.floor_mm = 60;  // the floor higher than the cameras have it
   BodyModelOptions broad;
   broad.width_scale = torso;
-  BodyModel walker(skeleton, broad, "35.asf");
+  BodyModel walker(scene.skeleton, broad, "35.asf");
   walker.SetRegionScales(truth.widths);
-  const BodyModel body(skeleton, {}, "35.asf");
-  const LimbScaler limbs(skeleton);
+  const BodyModel body(scene.skeleton, {}, "35.asf");
+  const LimbScaler limbs(scene.skeleton);
   // The bone ends of frame f with the limbs in proportion (about the hips and shoulders),
   // raised by the floor.
   const auto joints_of = [&](int f, const Build& b) {
-    Eigen::Matrix3Xd joints = kinematics.Compute(motion.Frame(f));
+    Eigen::Matrix3Xd joints = scene.kinematics.Compute(scene.motion.Frame(f));
     const Eigen::Vector3d root = joints.col(0);
     joints.colwise() -= root;
     double foot = 0;
@@ -163,7 +159,7 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
     joints.colwise() += root + Eigen::Vector3d(0, b.floor_mm, 0);
     return joints;
   };
-  const SilhouetteLikelihood likelihood(cameras);
+  const SilhouetteLikelihood likelihood(scene.cameras);
   SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
   // A walk of 60 frames: each frame's exact masks, the fit on the true pose.
   BodyShape shape;
@@ -202,25 +198,21 @@ TEST(BodyShapeTest, FindsTheBuildOfAWalkerFromExactSilhouettes) {
 // near their width, and the true pose is explained better than by the bare fit.
 TEST(BodyShapeTest, ASkirtIsLearntAsAGarmentNotAsFatLegs) {
   const SideAndFront scene;
-  const Skeleton& skeleton = scene.skeleton;
-  const Motion& motion = scene.motion;
-  const Kinematics& kinematics = scene.kinematics;
-  const std::vector<Camera>& cameras = scene.cameras;
   ClipBodyOptions skirt;
   skirt.clothing = Clothing::kSkirt;
-  const ClipBody walker(skeleton, skirt, "35.asf");
-  const BodyModel body(skeleton, {}, "35.asf");
-  const SilhouetteLikelihood likelihood(cameras);
+  const ClipBody walker(scene.skeleton, skirt, "35.asf");
+  const BodyModel body(scene.skeleton, {}, "35.asf");
+  const SilhouetteLikelihood likelihood(scene.cameras);
   SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
   std::vector<std::vector<CameraObservation>> frames;
   for (int f = 100; f < 160; ++f) {
     std::vector<Capsule> shapes;
-    walker.Place(kinematics.Compute(motion.Frame(f)), &shapes);
+    walker.Place(scene.kinematics.Compute(scene.motion.Frame(f)), &shapes);
     frames.push_back(scene.Observe(likelihood, shapes));
   }
   std::vector<Capsule> capsules;
   const auto cost = [&](int k, const Build& b) {
-    body.Place(kinematics.Compute(motion.Frame(100 + k)), 1.0, b.widths, b.garment, &capsules);
+    body.Place(scene.kinematics.Compute(scene.motion.Frame(100 + k)), 1.0, b.widths, b.garment, &capsules);
     std::vector<CameraScore> scores;
     likelihood.Cost(capsules, frames[k], &workspace, &scores);
     return ShapeCost(scores);
