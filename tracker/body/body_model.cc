@@ -135,17 +135,7 @@ void BodyModel::PlaceGarment(const Eigen::Matrix3Xd& joint_in_world_mm, double r
 
 void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm,
                       std::vector<Capsule>* capsules) const {
-  JGPM_CHECK(joint_in_world_mm.cols() == num_joints_);
-  capsules->resize(parts_.size());
-  for (size_t i = 0; i < parts_.size(); ++i) {
-    const BodyPart& part = parts_[i];
-    Capsule& c = (*capsules)[i];
-    c.from_mm = joint_in_world_mm.col(part.from_joint);
-    c.to_mm = joint_in_world_mm.col(part.to_joint);
-    c.radius_from_mm = part.radius_from_mm;
-    c.radius_to_mm = part.radius_to_mm;
-  }
-  PlaceGarment(joint_in_world_mm, width_scale_ * garment_, capsules);
+  Place(joint_in_world_mm, 1.0, region_scales_, garment_, capsules);
 }
 
 void BodyModel::Place(const Eigen::Matrix3Xd& joint_in_world_mm, double scale, const RegionScales& shape,
