@@ -63,6 +63,13 @@ void AnnealedFilter::Shift(int dimension, double offset, int every) {
   }
 }
 
+void AnnealedFilter::Transform(const std::function<void(double* state)>& change, int every) {
+  for (int i = every - 1; i < particles_.rows(); i += every) {
+    change(particles_.row(i).data());
+    model_.Normalise(particles_.row(i).data());
+  }
+}
+
 void AnnealedFilter::Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame) {
   const PlacementIndex p = model_.placement();
   for (int i = every - 1; i < particles_.rows(); i += every) {
@@ -203,6 +210,23 @@ std::vector<bool> AnnealedFilter::DominantMode(const std::vector<double>& values
   return near;
 }
 
+std::vector<int> AnnealedFilter::ModeParticles(const StateMatrix& particles, const std::vector<double>& weights,
+                                               const std::vector<std::pair<int, double>>& dimensions) {
+  std::vector<int> chosen(particles.rows());
+  for (int i = 0; i < static_cast<int>(chosen.size()); ++i) chosen[i] = i;
+  for (const auto& [column, period] : dimensions) {
+    if (period <= 0 || chosen.size() < 2) continue;
+    std::vector<double> values, w;
+    for (int i : chosen) values.push_back(particles(i, column)), w.push_back(weights[i]);
+    const std::vector<bool> mode = DominantMode(values, w, period);
+    std::vector<int> kept;
+    for (size_t j = 0; j < chosen.size(); ++j)
+      if (mode[j]) kept.push_back(chosen[j]);
+    chosen.swap(kept);
+  }
+  return chosen;
+}
+
 double AnnealedFilter::PeriodicMean(const std::vector<double>& values, const std::vector<double>& weights,
                                     double period) {
   const std::vector<bool> mode = DominantMode(values, weights, period);
@@ -219,21 +243,9 @@ double AnnealedFilter::PeriodicMean(const std::vector<double>& values, const std
 }
 
 Eigen::VectorXd AnnealedFilter::WeightedMean(const std::vector<double>& weights) const {
-  const int d = model_.Dimension();
-  const int n = static_cast<int>(particles_.rows());
-  // The particles of the dominant mode of the first coordinate, when it is periodic (the
-  // walking phase: half a cycle on is the mirror pose, and the average of the two a pose
-  // with the legs crossed), carry the estimate; the others have weight 0 in it.
-  std::vector<int> chosen;
-  std::vector<double> column(n);
-  if (model_.Period(0) > 0) {
-    for (int i = 0; i < n; ++i) column[i] = particles_(i, 0);
-    const std::vector<bool> mode = DominantMode(column, weights, model_.Period(0));
-    for (int i = 0; i < n; ++i)
-      if (mode[i]) chosen.push_back(i);
-  } else {
-    for (int i = 0; i < n; ++i) chosen.push_back(i);
-  }
+  const int d = model_.Dimension(), heading = model_.placement().heading;
+  const std::vector<int> chosen =
+      ModeParticles(particles_, weights, {{0, model_.Period(0)}, {heading, model_.Period(heading)}});
   std::vector<double> w(chosen.size()), values(chosen.size());
   double total = 0;
   for (size_t j = 0; j < chosen.size(); ++j) total += (w[j] = weights[chosen[j]]);

@@ -18,7 +18,9 @@
 // numbers come from (seed, frame, layer, index), so results do not depend on the threads.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -73,6 +75,8 @@ class AnnealedFilter {
   // Adds `offset` to one coordinate of every particle, or of every `every`-th one (then
   // normalises them).
   void Shift(int dimension, double offset, int every = 1);
+  // Changes every particle, or every `every`-th one, by `change` (then normalises it).
+  void Transform(const std::function<void(double* state)>& change, int every = 1);
   // Sets one coordinate of every particle to `value`.
   void Set(int dimension, double value) { particles_.col(dimension).setConstant(value); }
   // Moves every `every`-th particle's place on the floor to about `floor_mm` (normal, `std_mm`
@@ -102,6 +106,13 @@ class AnnealedFilter {
   // the heaviest one, or of the heaviest of the others when those weigh more.
   static std::vector<bool> DominantMode(const std::vector<double>& values, const std::vector<double>& weights,
                                         double period);
+  // The particles (rows) that carry the estimate: those of the dominant mode of each
+  // periodic coordinate of `dimensions` in turn, as (column, period); a period of 0 is
+  // skipped. The walking phase and then the heading: half a cycle on is the mirror pose,
+  // half a turn the walker turned round and walking the other way (reverse_every in
+  // tracker.h), and an average over either pair is neither.
+  static std::vector<int> ModeParticles(const StateMatrix& particles, const std::vector<double>& weights,
+                                        const std::vector<std::pair<int, double>>& dimensions);
   // The weighted mean of a periodic coordinate over its dominant mode, about its heaviest
   // particle (not the average of two modes half a period apart).
   static double PeriodicMean(const std::vector<double>& values, const std::vector<double>& weights, double period);

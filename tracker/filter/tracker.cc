@@ -68,6 +68,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
   else if (turn_every < 0) problem = "turn_every must be >= 0 (0: never)";
+  else if (reverse_every < 0) problem = "reverse_every must be >= 0 (0: never)";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
     problem = "bad relocation options";
   else if (!(max_hidden_s >= 0)) problem = "max_hidden_s must be >= 0";
@@ -80,7 +81,7 @@ bool TrackerOptions::Check(std::string* why) const {
     return false;
   }
   return annealing.Check(why) && likelihood.Check(why) && table.Check(why) && alignment.Check(why) &&
-         shape.Check(why);
+         shape.Check(why) && travel.Check(why);
 }
 
 double TrackedFrame::MeanIou() const {
@@ -108,7 +109,8 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
         BodyShapeOptions shape = options.shape;
         shape.lengths = shape.lengths && !options.known_size;  // the subject's own bones
         return shape;
-      }()) {
+      }()),
+      travel_(options.travel) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("tracking options", why);
   if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
@@ -293,6 +295,7 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   held_size_ = 0;
   start_boxes_.clear();
   last_good_time_s_ = -1e9;  // nothing to hold to until a good frame
+  travel_.Clear();
 }
 
 bool Tracker::StartFromFrames(const std::vector<Frame>& frames, bool at_last) {
@@ -472,6 +475,18 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // frame explained well.
   if (legs_by_phase_ && !fresh_ && options_.turn_every > 0 && cameras_.size() >= 2 && bad_frames_ == 0)
     filter_->Reorient(options_.turn_every, frame.index);
+  if (legs_by_phase_ && !fresh_ && options_.reverse_every > 0) {
+    // Turned round, walking the other way (TrackerOptions::reverse_every).
+    const PlacementIndex p = state_model_->placement();
+    int k = 0;
+    filter_->Transform(
+        [&](double* s) {
+          s[p.heading] += std::numbers::pi;
+          s[p.rate] = -s[p.rate];
+          s[0] += 0.5 * (k++ % 2);
+        },
+        options_.reverse_every);
+  }
   // A frame the annealed estimate explains badly (mean IoU under lost_iou: the person
   // hidden, their blob gone aside) leaves the particles as the dynamics put them, any turn
   // among them: fitted to whatever shows, they shrank and shortened their stride, and then,
@@ -613,6 +628,12 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   } else {
     // Out of every view and seen by none: the estimate is the prediction.
     out.status = evidence ? TrackStatus::kTracked : TrackStatus::kPredicted;
+  }
+  // Going against its dynamics: the walk's direction turned (TrackerOptions::travel).
+  if (legs_by_phase_ && out.status == TrackStatus::kTracked && bad_frames_ == 0) {
+    const double direction = out.state[p.heading] + (out.state[p.rate] < 0 ? std::numbers::pi : 0);
+    if (travel_.Against(frame.time_s, Eigen::Vector2d(out.state[p.x], out.state[p.z]), direction))
+      filter_->Transform([&](double* s) { s[p.rate] = -s[p.rate]; });
   }
   finish(&out);
   return out;

@@ -92,6 +92,7 @@
 #include "tracker/body/body_model.h"
 #include "tracker/filter/annealed_filter.h"
 #include "tracker/filter/body_shape.h"
+#include "tracker/filter/travel_check.h"
 #include "tracker/filter/likelihood.h"
 #include "tracker/filter/person_locator.h"
 #include "tracker/filter/pose_refiner.h"
@@ -145,6 +146,25 @@ struct TrackerOptions {
   // the issue asks to keep, 40.0 / 42.8 / 40.1 (front and back look alike: a body turned
   // round fits a degraded ring clip's masks about as well as the truth).
   int turn_every = 50;
+  // Every reverse_every-th particle is turned round and set walking the other way
+  // (heading + 180 degrees, the cadence negated: the same travel, backwards instead of
+  // forwards or back; at its phase or half a cycle on, alternately) before each update
+  // (0: never): a walker going backwards, whom a start takes for walking forwards, is then
+  // faced in a frame or two (with two cameras or more the turns above and the travel check
+  // below get there too, in about half a second). Off: on the realism clips (4 seeds,
+  // bodytrack 14 mean absolute mm) every 50th particle gave 102.9 against 105.8 off on the
+  // tuning clips, a difference within their noise (4 mm, above), and 103.8 against 100.9 on
+  // the realism suite, where a clothed and a reshaped walker's seeds took the turned round
+  // pose for theirs now and then (coat 64.4 -> 77.5, body 38.8 -> 50.5); a prior against
+  // walking backwards (a tenth: 104.6 / 101.5) did not change that beyond the noise. The
+  // moonwalks of subject 131 (131_10, 131_12, 131_13) are not better for it: their error is
+  // in the pose, which a walking prior does not have, more than in the facing.
+  int reverse_every = 0;
+  // An estimate that goes against its own dynamics, at a walking pace, frame after frame
+  // (travel_check.h), has the walk's direction wrong: every particle's cadence is negated
+  // (forwards to backwards or back, the heading kept). Reversing the facing (above) keeps
+  // the direction of travel; this turns it.
+  TravelCheckOptions travel;
   // A frame the estimate explains badly (mean IoU under lost_iou) is not fitted: the
   // particles stay as predicted, and the person walks on at their pace. Of every suite
   // clip (clean, realism, tuning, held out; 4 seeds) it changed only the occluded trousers
@@ -314,6 +334,7 @@ class Tracker {
   bool legs_by_phase_ = false;
   double mirror_evidence_ = 0;  // decayed sum of cost(estimate) - cost(half a cycle on)
   int mirror_streak_ = 0;       // frames in a row where half a cycle on fitted better
+  TravelCheck travel_;          // the estimates' travel against their dynamics
   double model_height_mm_ = 0;  // floor to top of head at size 1
 };
 

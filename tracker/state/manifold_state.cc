@@ -77,7 +77,7 @@ void ManifoldStateModel::Normalise(double* s) const {
   s[1] = table_.periodic(1) ? Wrap(s[1], table_.hi()[1]) : std::clamp(s[1], table_.lo()[1], table_.hi()[1]);
   s[2] = std::clamp(s[2], table_.lo()[2], table_.hi()[2]);
   s[5] = WrapAngle(s[5]);
-  s[6] = std::clamp(s[6], d_.min_cadence, d_.max_cadence);
+  s[6] = std::copysign(std::clamp(std::abs(s[6]), d_.min_cadence, d_.max_cadence), s[6]);
   s[7] = std::clamp(s[7], d_.min_size, d_.max_size);
   s[8] = std::clamp(s[8], d_.min_width, d_.max_width);
 }

@@ -4,14 +4,19 @@
 //
 // Dynamics, per frame of dt seconds (noise standard deviations are per 1/30 s and grow with
 // sqrt(dt)):
-//   phase   += cadence dt + noise: the walking cycle advances at the cadence;
+//   phase   += cadence dt + noise: the walking cycle advances at the cadence; a negative
+//           cadence runs it back, which is walking backwards (backward walking is close to
+//           forward walking played in reverse);
 //   cadence, gait position, stride scale, heading, size, width: slow random walks (a walker keeps
 //           their style; the layers of a multi-layer model are reached by the scale's drift);
 //   root    += stride(gait, scale) size cadence dt along the heading, + noise: a walker
 //           moves as far per cycle as the stance foot is carried back (prior/pose_table.h),
-//           which ties speed to stride and cadence instead of leaving it free.
-// Assumed: one person walking forwards on a flat floor (y = 0, or the height the tracker
-// learns: StateModel::SetFloor), facing where they go.
+//           which ties speed to stride and cadence instead of leaving it free (against the
+//           heading when the cadence is negative).
+// The cadence keeps its sign: its noise never takes a walker from forwards to backwards
+// (the tracker turns every particle round at once when the silhouettes say so: tracker.h).
+// Assumed: one person walking on a flat floor (y = 0, or the height the tracker learns:
+// StateModel::SetFloor), facing where they go or its opposite.
 #pragma once
 
 #include "prior/model/gait_model.h"
@@ -38,7 +43,7 @@ struct ManifoldDynamics {
   double root_noise_mm = 8;
   double size_noise = 0.001;
   double width_noise = kWidthNoise;
-  double min_cadence = 0.5, max_cadence = 1.6;  // cycles per second
+  double min_cadence = 0.5, max_cadence = 1.6;  // cycles per second, either way
   double min_size = 0.75, max_size = 1.3;
   double min_width = kMinWidth, max_width = kMaxWidth;
   // A start without a manifold point draws the stride scale from N(1, start_scale_std)

@@ -184,6 +184,28 @@ TEST(AnnealedFilter, PeriodicMeanTakesTheDominantMode) {
   EXPECT_NEAR(AnnealedFilter::PeriodicMean({0.2, 0.3, 0.4}, {1, 1, 2}, 1.0), 0.325, 1e-12);
 }
 
+// The particles that carry the estimate, by hand: the phase's dominant mode first, then,
+// among those, the heading's. Rows (phase, heading, cadence): two walkers facing +z, one
+// with the legs the other way (phase + 0.5), and two turned round walking backwards; the
+// mean of the chosen rows' cadence is the forward walkers' (averaged with the turned
+// round ones' it was 0.4).
+TEST(AnnealedFilter, TheEstimateIsOneWalkerNotAnAverageOfModes) {
+  StateMatrix particles(5, 3);
+  const double pi = std::numbers::pi;
+  particles << 0.10, 0.05, 0.9,   //
+      0.12, -0.05, 0.8,           //
+      0.61, 0.00, 0.9,            // the mirror pose: another phase mode
+      0.11, pi - 0.05, -0.9,      // turned round, walking backwards
+      0.60, -pi + 0.1, -0.85;     // the same, half a cycle on
+  const std::vector<double> weights = {0.25, 0.25, 0.1, 0.2, 0.2};
+  // Phase: 0.10, 0.12, 0.11 weigh 0.7 against 0.3; heading among those: 0.5 against 0.2.
+  EXPECT_EQ(AnnealedFilter::ModeParticles(particles, weights, {{0, 1.0}, {1, 2 * pi}}), (std::vector<int>{0, 1}));
+  // The heading alone: 0.6 near 0 against 0.4 turned round.
+  EXPECT_EQ(AnnealedFilter::ModeParticles(particles, weights, {{1, 2 * pi}}), (std::vector<int>{0, 1, 2}));
+  // Periods of 0 (coordinates that are not periodic) choose nothing out.
+  EXPECT_EQ(AnnealedFilter::ModeParticles(particles, weights, {{0, 0.0}, {2, 0.0}}).size(), 5u);
+}
+
 TEST(AnnealedFilter, SystematicResamplingKeepsCountsWithinOneOfNw) {
   for (int trial = 0; trial < 20; ++trial) {
     const int m = 50 + 37 * trial, count = trial % 3 == 0 ? m : 3 * m / 2 + 1;

@@ -4,6 +4,7 @@
 // or uniformly over that range with start_scale_std = 0; the phase is uniform.
 #include "tracker/state/manifold_state.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -73,14 +74,20 @@ TEST(ManifoldState, SampleReadsNothingOfTheBufferItWrites) {
   }
 }
 
+// The dynamics without noise.
+ManifoldDynamics Quiet() {
+  ManifoldDynamics quiet;
+  quiet.phase_noise = quiet.cadence_noise = quiet.gait_noise = quiet.scale_noise = quiet.heading_noise_deg = 0;
+  quiet.turn_noise_deg = quiet.root_noise_mm = quiet.size_noise = quiet.width_noise = 0;
+  return quiet;
+}
+
 // One frame of the dynamics without noise, by hand: the phase advances by cadence x dt,
 // the root by the stride (for the gait point and stride scale, times the size) per cycle
 // along the heading (0: +z), everything else stays; the phase wraps.
 TEST(ManifoldState, PredictWithoutNoiseIsTheWalkByHand) {
   const PoseTable table(Model(), {});
-  ManifoldDynamics quiet;
-  quiet.phase_noise = quiet.cadence_noise = quiet.gait_noise = quiet.scale_noise = quiet.heading_noise_deg = 0;
-  quiet.turn_noise_deg = quiet.root_noise_mm = quiet.size_noise = quiet.width_noise = 0;
+  const ManifoldDynamics quiet = Quiet();
   const ManifoldStateModel model(Model(), table, quiet);
   const double gait = 0.5 * (table.lo()[1] + table.hi()[1]), heading = 30 * std::numbers::pi / 180;
   double s[9] = {0.9, gait, 1.0, 100, -200, heading, 1.2, 1.1, 1.05};
@@ -97,6 +104,31 @@ TEST(ManifoldState, PredictWithoutNoiseIsTheWalkByHand) {
   EXPECT_DOUBLE_EQ(s[7], 1.1);
   EXPECT_DOUBLE_EQ(s[8], 1.05);
   EXPECT_GT(stride, 500);  // a walker's stride, not a shuffle
+}
+
+// The same walk backwards, by hand: a negative cadence runs the phase back and moves the
+// root against the heading by the same stride per cycle. Normalising keeps the cadence's
+// sign and clamps its size to [min_cadence, max_cadence] either way (a clamp to the
+// positive range turned every backward walker forwards).
+TEST(ManifoldState, ANegativeCadenceWalksBackwards) {
+  const PoseTable table(Model(), {});
+  const ManifoldDynamics quiet = Quiet();
+  const ManifoldStateModel model(Model(), table, quiet);
+  const double gait = 0.5 * (table.lo()[1] + table.hi()[1]), heading = -50 * std::numbers::pi / 180;
+  double s[9] = {0.1, gait, 1.0, 100, -200, heading, -0.8, 1.0, 1.0};
+  const double stride = table.StrideMm(gait, 1.0);
+  Random random(1);
+  model.Predict(0.25, &random, s);
+  EXPECT_NEAR(s[0], 0.1 - 0.8 * 0.25 + 1, 1e-12);  // wrapped
+  EXPECT_NEAR(s[3], 100 - stride * 0.8 * 0.25 * std::sin(heading), 1e-9);
+  EXPECT_NEAR(s[4], -200 - stride * 0.8 * 0.25 * std::cos(heading), 1e-9);
+  EXPECT_DOUBLE_EQ(s[6], -0.8);
+  for (const double cadence : {-0.1, -3.0, 0.1, 3.0}) {
+    s[6] = cadence;
+    model.Normalise(s);
+    EXPECT_DOUBLE_EQ(s[6], std::copysign(std::clamp(std::abs(cadence), quiet.min_cadence, quiet.max_cadence), cadence))
+        << cadence;
+  }
 }
 
 TEST(ManifoldState, AStartDrawsTheStrideScaleNearTheRecordedStrides) {
