@@ -65,6 +65,11 @@
 // (Seen on the suite, 2 seeds: 51.2 -> 41.6 mm mean; a monocular clip that began swapped
 // for 40 frames, 72 -> 45 mm; the 4-camera clips 38.8 -> 40.0 mm.)
 //
+// Front and back look alike too, and a walker may go backwards (a negative cadence:
+// manifold_state.h). The turns to any heading (turn_every) look for the facing, and an
+// estimate whose place goes against its own dynamics has its cadence's sign turned
+// (travel, travel_check.h): the silhouettes choose the facing, the travel the direction.
+//
 // How the constants below were checked (they were first set on the tracking suite): on the
 // realism tuning clips only (datasets_scripts/realism_tuning.txt, 5 clips, seeds 1-3,
 // bodytrack's 14 joints, mean absolute mm), each halved and doubled alone. The default
@@ -92,11 +97,11 @@
 #include "tracker/body/body_model.h"
 #include "tracker/filter/annealed_filter.h"
 #include "tracker/filter/body_shape.h"
-#include "tracker/filter/travel_check.h"
 #include "tracker/filter/likelihood.h"
 #include "tracker/filter/person_locator.h"
 #include "tracker/filter/pose_refiner.h"
 #include "tracker/filter/thread_pool.h"
+#include "tracker/filter/travel_check.h"
 #include "tracker/filter/view_alignment.h"
 #include "tracker/frames/frame_source.h"
 #include "tracker/state/pose_table.h"

@@ -2,9 +2,9 @@
 // along their heading, forwards or, with a negative cadence, backwards; the silhouettes
 // say little of which way the walk goes through time (each frame is scored alone, and the
 // annealing puts the place and the phase where the frame says, whatever the dynamics
-// predicted). So a track can go on with the walk's direction wrong: started facing
-// away from the walker and walking forwards, or turned round (TrackerOptions::reverse_every)
-// to face the walker but then walking backwards against them. Its estimates still follow
+// predicted). So a track can go on with the walk's direction wrong: started facing away
+// from the walker and walking forwards, or turned (TrackerOptions::turn_every,
+// reverse_every) to face the walker but walking the other way. Its estimates still follow
 // the walker, against their own dynamics: this check sees that in the estimates' travel,
 // and the tracker turns the cadence's sign (tracker.h).
 //
