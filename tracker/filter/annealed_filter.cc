@@ -57,10 +57,7 @@ void AnnealedFilter::Initialise(const InitialGuess& guess, int count, int frame)
 }
 
 void AnnealedFilter::Shift(int dimension, double offset, int every) {
-  for (int i = every - 1; i < particles_.rows(); i += every) {
-    particles_(i, dimension) += offset;
-    model_.Normalise(particles_.row(i).data());
-  }
+  Transform([&](double* state) { state[dimension] += offset; }, every);
 }
 
 void AnnealedFilter::Transform(const std::function<void(double* state)>& change, int every) {

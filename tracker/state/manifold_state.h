@@ -14,7 +14,8 @@
 //           which ties speed to stride and cadence instead of leaving it free (against the
 //           heading when the cadence is negative).
 // The cadence keeps its sign: its noise never takes a walker from forwards to backwards
-// (the tracker turns every particle round at once when the silhouettes say so: tracker.h).
+// (the tracker negates every particle's cadence at once when the estimates' travel goes
+// against their dynamics: tracker/filter/travel_check.h).
 // Assumed: one person walking on a flat floor (y = 0, or the height the tracker learns:
 // StateModel::SetFloor), facing where they go or its opposite.
 #pragma once
