@@ -18,6 +18,7 @@ struct RenderArguments {
   std::vector<std::string> asf;
   std::vector<std::string> amc;
   std::vector<std::string> walks;
+  std::vector<std::string> pauses;
   std::string rig = "ring";
   bool cameras_given = false;  // --cameras (else the webcam rig has its one)
   std::string clothing = "none";
@@ -54,6 +55,11 @@ void RunRender(const RenderArguments& a) {
   ClipOptions clip = a.clip;
   JGPM_CHECK(ParseRigKind(a.rig, &clip.rig.kind) && ParseClothing(a.clothing, &clip.body.clothing));  // CLI11 checked
   if (clip.rig.kind == RigKind::kWebcam && !a.cameras_given) clip.rig.num_cameras = 1;
+  for (const std::string& text : a.pauses) {
+    ClipPause pause;
+    if (!ParsePause(text, &pause)) ThrowInputError("--pause " + text, "expected AT_S,FOR_S (AT >= 0, 0 < FOR <= 60)");
+    clip.pauses.push_back(pause);
+  }
   std::string why;
   if (!clip.Check(&why)) ThrowInputError("jgpm render", why);
   std::vector<Camera> cameras;
@@ -154,6 +160,9 @@ void AddRenderCommands(CLI::App& app) {
                      "the written cameras differ from the rendering ones by this times a real calibration's error "
                      "(1: focal 1.5%, principal point 4 px, rotation 0.7 deg, centre 30 mm)")
       ->capture_default_str()->check(CLI::Range(0.0, 10.0));
+  render->add_option("--pause", a->pauses,
+                     "AT,FOR: the walkers stand still AT s into their trials for FOR s, then walk on (repeat for "
+                     "several stops; the clip lasts that much longer)");
   render->add_option("--seed", a->clip.seed, "random seed of the degradations, rig, scene and calibration error")
       ->capture_default_str();
   render->add_flag("!--no-contact-sheet", a->clip.contact_sheet, "skip contact_sheet.png");

@@ -203,6 +203,16 @@ bool ParsePlacement(const std::string& text, ClipPlacement* placement) {
   return true;
 }
 
+bool ParsePause(const std::string& text, ClipPause* pause) {
+  ClipPause p;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf%c", &p.at_s, &p.for_s, &end) != 2 || !(p.at_s >= 0 && p.at_s < 1e6) ||
+      !(p.for_s > 0 && p.for_s <= 60))
+    return false;
+  *pause = p;
+  return true;
+}
+
 std::string ClipFrameName(int frame) {
   char name[32];
   std::snprintf(name, sizeof name, "%06d.png", frame);

@@ -87,6 +87,15 @@ struct ClipPlacement {
 // "X,Z,HEADING,DELAY" (jgpm render --walk): four finite numbers.
 bool ParsePlacement(const std::string& text, ClipPlacement* placement);
 
+// A stop: a walker stands still, holding the pose it has `at_s` seconds into its trial,
+// for `for_s` seconds, then walks on from there (tracker/clip/synthetic_clip.h).
+struct ClipPause {
+  double at_s = 0, for_s = 0;
+};
+
+// "AT,FOR" (jgpm render --pause): two finite numbers, AT >= 0, 0 < FOR <= 60.
+bool ParsePause(const std::string& text, ClipPause* pause);
+
 struct ClipPerson {
   int id = 0;  // 1, 2, ... in the order given
   std::string source_asf, source_amc;

@@ -38,6 +38,12 @@ bool ClipOptions::Check(std::string* why) const {
     if (why) *why = "calibration error: expected a scale of 0 to 10";
     return false;
   }
+  for (const ClipPause& p : pauses) {
+    if (!(p.at_s >= 0 && p.at_s < 1e6 && p.for_s > 0 && p.for_s <= 60)) {
+      if (why) *why = "pause: expected AT >= 0 s and 0 < FOR <= 60 s";
+      return false;
+    }
+  }
   return rig.Check(why) && degradations.Check(why) && body.Check(why) && scene.Check(why);
 }
 
@@ -197,7 +203,8 @@ std::vector<std::string> JointNames(const Skeleton& skeleton) {
 // The walker's poses in the clip's `frames` frames at `fps`; `first` is the first walker
 // (nullptr for it), whose middle frame the delay counts from. InputError for a placed first
 // walker with a delay.
-WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const ClipWalker* first) {
+WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const std::vector<ClipPause>& pauses,
+                        const ClipWalker* first) {
   const Motion& motion = walker.motion;
   const ClipPlacement& place = walker.placement;
   const double source_fps = motion.frames_per_second;
@@ -226,7 +233,7 @@ WalkerTrack PlaceWalker(const ClipWalker& walker, int frames, double fps, const 
   Eigen::Matrix3Xd joints;
   for (int k = 0; k < frames; ++k) {
     // Clip frame k shows the source frame nearest to its time.
-    const long source = std::lround(k * (source_fps / fps) - track.start_s * source_fps);
+    const long source = std::lround(TrialTime(k / fps - track.start_s, pauses) * source_fps);
     if (source < 0 || source >= motion.NumFrames()) continue;
     kinematics.Compute(motion.Frame(static_cast<int>(source)), &joints);
     if (place.placed) {
@@ -313,6 +320,11 @@ void CheckWalkers(const std::vector<ClipWalker>& walkers, const ClipOptions& opt
       ThrowInputError(w.source.amc, "the clip's fps " + FormatShortest(options.fps) + " exceeds the motion's " +
                                         FormatShortest(w.motion.frames_per_second));
     if (w.motion.NumFrames() == 0) ThrowInputError(w.source.amc, "the motion has no frames");
+    const double trial_s = (w.motion.NumFrames() - 1) / w.motion.frames_per_second;
+    for (const ClipPause& p : options.pauses)
+      if (&w == &walkers[0] && p.at_s >= trial_s)
+        ThrowInputError("--pause " + FormatShortest(p.at_s) + "," + FormatShortest(p.for_s),
+                        "the trial lasts " + cv::format("%.2f", trial_s) + " s: a stop must begin within it");
     const ClipPlacement& p = w.placement;
     if (p.placed && !(std::isfinite(p.at_x_mm) && std::isfinite(p.at_z_mm) && std::isfinite(p.heading_deg) &&
                       std::isfinite(p.delay_s)))
@@ -321,6 +333,18 @@ void CheckWalkers(const std::vector<ClipWalker>& walkers, const ClipOptions& opt
 }
 
 }  // namespace
+
+double TrialTime(double walker_s, const std::vector<ClipPause>& pauses) {
+  std::vector<ClipPause> sorted = pauses;
+  std::sort(sorted.begin(), sorted.end(), [](const ClipPause& a, const ClipPause& b) { return a.at_s < b.at_s; });
+  double paused = 0;  // paused before walker_s
+  for (const ClipPause& p : sorted) {
+    if (walker_s - paused < p.at_s) break;
+    if (walker_s - paused < p.at_s + p.for_s) return p.at_s;
+    paused += p.for_s;
+  }
+  return walker_s - paused;
+}
 
 ClipBodyOptions WalkerBody(const ClipBodyOptions& first, int index) {
   ClipBodyOptions body = first;
@@ -358,11 +382,13 @@ ClipSummary RenderClip(const std::vector<ClipWalker>& walkers, std::vector<Camer
   // The clip is the first walker's trial: clip frame k is at time k / fps.
   const Motion& motion = walkers[0].motion;
   const double step = motion.frames_per_second / options.fps;
-  int frames = static_cast<int>(std::floor((motion.NumFrames() - 1) / step + 1e-9)) + 1;
+  double paused_s = 0;
+  for (const ClipPause& p : options.pauses) paused_s += p.for_s;
+  int frames = static_cast<int>(std::floor((motion.NumFrames() - 1) / step + paused_s * options.fps + 1e-9)) + 1;
   if (options.max_frames > 0) frames = std::min(frames, options.max_frames);
   std::vector<WalkerTrack> tracks;
   for (size_t w = 0; w < people; ++w)
-    tracks.push_back(PlaceWalker(walkers[w], frames, options.fps, w == 0 ? nullptr : &walkers[0]));
+    tracks.push_back(PlaceWalker(walkers[w], frames, options.fps, options.pauses, w == 0 ? nullptr : &walkers[0]));
   const std::vector<Eigen::Matrix3Xd> scene_joints = SceneJoints(tracks);
   if (cameras.empty()) cameras = MakeRig(scene_joints, options.rig, options.seed);
   // The cameras as a calibration would give them: written to the clip, used by the tracker.

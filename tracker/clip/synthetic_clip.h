@@ -35,6 +35,10 @@ struct ClipOptions {
   SceneOptions scene;          // occluders and the shadow
   double calibration_error = 0;  // the written cameras differ from the rendering ones by
                                  // this times a real calibration's error (clip_rig.h)
+  // Stops (--pause): every walker stands still at each pause's time of its trial for its
+  // length, then walks on; the clip lasts that much longer. People stop and start, mocap
+  // trials of walks rarely do, and a walking prior's dynamics assume they never do.
+  std::vector<ClipPause> pauses;
   uint64_t seed = 1;           // degradations, noise, rig, scene, calibration error
   bool contact_sheet = true;
 
@@ -75,6 +79,10 @@ struct ClipWalker {
 // clothing and width scale, another person for each (body seed + index), so that the
 // first keeps the body a one-walker clip would have.
 ClipBodyOptions WalkerBody(const ClipBodyOptions& first, int index);
+
+// The time into a walker's trial shown `walker_s` seconds after it began, with `pauses`
+// (in trial time, any order): a pause holds the trial's time at its start for its length.
+double TrialTime(double walker_s, const std::vector<ClipPause>& pauses);
 
 // Renders the clip into `out_dir`, which must not exist or be empty: it is written as
 // `<out_dir>.partial` and renamed when complete, so a failure leaves nothing half-made. An

@@ -78,7 +78,11 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
       } else if (option == "--occluders") o.scene.occluders = in.ParseInt(value, what);
       else if (option == "--calibration-error") o.calibration_error = in.ParseDouble(value, what);
       else if (option == "--seed") o.seed = static_cast<uint64_t>(in.ParseInt(value, what));
-      else if (option == "--walk") {
+      else if (option == "--pause") {
+        ClipPause pause;
+        if (!ParsePause(std::string(value), &pause)) in.Fail(what + ": expected AT_S,FOR_S (AT >= 0, 0 < FOR <= 60)");
+        o.pauses.push_back(pause);
+      } else if (option == "--walk") {
         ClipPlacement walk;
         if (!ParsePlacement(std::string(value), &walk)) in.Fail(what + ": expected X_MM,Z_MM,HEADING_DEG,DELAY_S");
         clip.walks.push_back(walk);

@@ -28,8 +28,8 @@ struct SuiteClip {
 // repeated name. Options understood (as `jgpm render` has them): --cameras --width
 // --height --fps --max-frames --ring-radius --sensor-noise --mask-noise --holes --clutter
 // --lighting --drop-rate --width-scale --seed --rig --body-seed --clothing --bag --shadow --reflection
-// --occluders --calibration-error --walk (--bag and --shadow take no value; --walk once per
-// walker).
+// --occluders --calibration-error --pause --walk (--bag and --shadow take no value; --walk
+// once per walker; --pause as often as the walkers stop).
 std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::string& source);
 std::vector<SuiteClip> ReadTrackingSuite(const std::filesystem::path& path);
 

@@ -247,6 +247,52 @@ TEST(SyntheticClipTest, SameSeedSameClip) {
   }
 }
 
+// A stop, by hand: the trial's time stands still at each pause for its length (pauses in
+// any order), and the clip shows it: as many frames more as the pauses last, the pose held
+// (same source frame, same joints) through each, and the trial going on from there.
+TEST(SyntheticClipTest, APauseHoldsThePoseThenWalksOn) {
+  const std::vector<ClipPause> pauses = {{1.0, 0.5}, {0.2, 0.3}};
+  EXPECT_DOUBLE_EQ(TrialTime(0.1, pauses), 0.1);
+  EXPECT_DOUBLE_EQ(TrialTime(0.35, pauses), 0.2);  // in the first stop
+  EXPECT_DOUBLE_EQ(TrialTime(0.6, pauses), 0.3);
+  EXPECT_DOUBLE_EQ(TrialTime(1.4, pauses), 1.0);   // in the second
+  EXPECT_DOUBLE_EQ(TrialTime(1.9, pauses), 1.1);
+  ClipPause pause;
+  EXPECT_TRUE(ParsePause("0.5,1.25", &pause));
+  EXPECT_EQ(pause.at_s, 0.5);
+  EXPECT_EQ(pause.for_s, 1.25);
+  for (const char* bad : {"", "1", "1,0", "-1,1", "1,61", "1,2,3", "1,2x", "nan,1", "1,nan"})
+    EXPECT_FALSE(ParsePause(bad, &pause)) << bad;
+
+  const Trial& walk = Walk();
+  test::TempDir dir;
+  ClipOptions options = SmallClip();
+  options.rig.num_cameras = 1;
+  options.contact_sheet = false;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "walk").string());
+  options.pauses = {{0.5, 0.4}};
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, (dir.path() / "stop").string());
+  const ClipGroundTruth plain = ReadGroundTruth(dir.path() / "walk/ground_truth.json");
+  const ClipGroundTruth stop = ReadGroundTruth(dir.path() / "stop/ground_truth.json");
+  ASSERT_EQ(stop.frames.size(), plain.frames.size() + 12);  // 0.4 s at 30 frames a second
+  for (size_t k = 0; k < stop.frames.size(); ++k) {
+    const size_t shown = k < 15 ? k : k < 27 ? 15 : k - 12;  // the stop: frames 15-26 show frame 15
+    EXPECT_EQ(stop.frames[k].source_frame, plain.frames[shown].source_frame) << k;
+    EXPECT_TRUE(stop.frames[k].joints_mm.isApprox(plain.frames[shown].joints_mm, 1e-12)) << k;
+  }
+
+  ClipOptions late = options;
+  late.pauses = {{60.0, 1.0}};  // after the trial's end
+  test::ExpectInputError(
+      [&] { RenderClip(walk.skeleton, walk.motion, walk.source, {}, late, (dir.path() / "late").string()); },
+      {"--pause 60,1", "a stop must begin within it"});
+  EXPECT_FALSE(fs::exists(dir.path() / "late"));
+  late.pauses = {{1.0, 0.0}};
+  std::string why;
+  EXPECT_FALSE(late.Check(&why));
+  EXPECT_NE(why.find("pause"), std::string::npos) << why;
+}
+
 TEST(SyntheticClipTest, BadRequestsLeaveNothingBehind) {
   const Trial& walk = Walk();
   test::TempDir dir;

@@ -36,7 +36,7 @@ TEST(TrackingSuite, ParsesNamesTrialsAndOptions) {
 TEST(TrackingSuite, RealismOptionsAndFlags) {
   const std::vector<SuiteClip> clips = ParseTrackingSuite(
       "w 35_16 --rig webcam --body-seed 13 --clothing coat --bag --shadow --occluders 2 --calibration-error 1.5\n"
-      "s 07_01 --rig surveillance --cameras 3 --shadow\n",
+      "s 07_01 --rig surveillance --cameras 3 --shadow --pause 1,0.5 --pause 0.25,2\n",
       "s.txt");
   ASSERT_EQ(clips.size(), 2u);
   const ClipOptions& w = clips[0].options;
@@ -48,6 +48,10 @@ TEST(TrackingSuite, RealismOptionsAndFlags) {
   EXPECT_TRUE(w.scene.shadow);
   EXPECT_EQ(w.scene.occluders, 2);
   EXPECT_DOUBLE_EQ(w.calibration_error, 1.5);
+  EXPECT_TRUE(w.pauses.empty());
+  ASSERT_EQ(clips[1].options.pauses.size(), 2u);
+  EXPECT_EQ(clips[1].options.pauses[1].at_s, 0.25);
+  EXPECT_EQ(clips[1].options.pauses[1].for_s, 2);
   EXPECT_EQ(clips[0].options_text,
             "--rig webcam --body-seed 13 --clothing coat --bag --shadow --occluders 2 --calibration-error 1.5");
   EXPECT_EQ(clips[1].options.rig.kind, RigKind::kSurveillance);
@@ -59,7 +63,9 @@ TEST(TrackingSuite, RealismOptionsAndFlags) {
            {"x 07_01 --clothing cape\n", "expected none, trousers, coat or skirt"},
            {"x 07_01 --rig webcam --cameras 2\n", "one camera"},
            {"x 07_01 --occluders 9\n", "occluders"},
-           {"x 07_01 --calibration-error -1\n", "calibration error"}}) {
+           {"x 07_01 --calibration-error -1\n", "calibration error"},
+           {"x 07_01 --pause 1\n", "AT_S,FOR_S"},
+           {"x 07_01 --pause 1,0\n", "AT_S,FOR_S"}}) {
     const std::string line = text;  // (clang 14 cannot capture a structured binding)
     test::ExpectInputError([&line] { ParseTrackingSuite(line, "s.txt"); }, {"s.txt:1", phrase});
   }
@@ -75,7 +81,7 @@ TEST(TrackingSuite, TheShippedSuitesParse) {
   const std::vector<SuiteClip> realism =
       ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts/realism_suite.txt");
   bool body = false, clothing = false, shadow = false, occluders = false, calibration = false, rig = false,
-       subject131 = false, all = false;
+       subject131 = false, stop = false, all = false;
   for (const SuiteClip& c : realism) {
     const ClipOptions& o = c.options;
     body |= o.body.body_seed > 0;
@@ -85,10 +91,11 @@ TEST(TrackingSuite, TheShippedSuitesParse) {
     calibration |= o.calibration_error > 0;
     rig |= o.rig.kind != RigKind::kRing;
     subject131 |= c.trial.subject == "131";
+    stop |= !o.pauses.empty();
     all |= o.body.body_seed > 0 && o.body.clothing != Clothing::kNone && o.scene.shadow && o.scene.occluders > 0 &&
            o.calibration_error > 0 && o.rig.kind != RigKind::kRing;
   }
-  EXPECT_TRUE(body && clothing && shadow && occluders && calibration && rig && subject131 && all);
+  EXPECT_TRUE(body && clothing && shadow && occluders && calibration && rig && subject131 && stop && all);
 }
 
 // Several walkers: trials joined by '+', one --walk each.
