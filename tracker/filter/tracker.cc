@@ -130,6 +130,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
     if (model.HasManifold()) {
       ManifoldDynamics dynamics;
       if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;
+      if (!options.pace) dynamics.min_cadence = dynamics.unpaced_min_cadence;
       state_model_ = std::make_unique<ManifoldStateModel>(model, *table_, dynamics);
     } else {
       LatentDynamics dynamics;
@@ -632,8 +633,13 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // Going against its dynamics: the walk's direction turned (TrackerOptions::travel).
   if (legs_by_phase_ && out.status == TrackStatus::kTracked && bad_frames_ == 0) {
     const double direction = out.state[p.heading] + (out.state[p.rate] < 0 ? std::numbers::pi : 0);
-    if (travel_.Against(frame.time_s, Eigen::Vector2d(out.state[p.x], out.state[p.z]), direction))
+    if (travel_.Against(frame.time_s, Eigen::Vector2d(out.state[p.x], out.state[p.z]), direction)) {
       filter_->Transform([&](double* s) { s[p.rate] = -s[p.rate]; });
+    } else if (options_.pace && travel_.Speed() >= 0 && dt > 0) {
+      // The cadence follows the pace the estimates go (TrackerOptions::pace).
+      const double share = std::min(1.0, dt / options_.travel.window_s), speed = travel_.Speed();
+      filter_->Transform([&](double* s) { state_model_->Pace(speed, share, s); });
+    }
   }
   finish(&out);
   return out;

@@ -49,6 +49,9 @@ class TravelCheck {
   // when the place has gone against that direction, at min_speed_mm_s or faster over
   // window_s, in `streak` frames in a row (then the check starts again).
   bool Against(double time_s, const Eigen::Vector2d& floor_mm, double direction_rad);
+  // The estimates' speed over the window at the last Against (mm/s), whichever way they
+  // went; < 0 while the window is not yet full (after a Clear).
+  double Speed() const { return speed_mm_s_; }
 
  private:
   struct Seen {
@@ -58,6 +61,7 @@ class TravelCheck {
   TravelCheckOptions options_;
   std::deque<Seen> seen_;
   int streak_ = 0;
+  double speed_mm_s_ = -1;
 };
 
 }  // namespace jgpm

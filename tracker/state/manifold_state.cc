@@ -65,6 +65,15 @@ void ManifoldStateModel::Predict(double dt, Random* r, double* s) const {
   Normalise(s);
 }
 
+void ManifoldStateModel::Pace(double speed_mm_s, double share, double* s) const {
+  const double stride = table_.StrideMm(s[1], s[2]) * s[7];
+  if (!(stride > 0) || !(speed_mm_s >= 0)) return;
+  // On the cadence's size, its sign apart: to a stop, s[6] + (0 - s[6]) is +0 either way.
+  const double size = std::abs(s[6]);
+  s[6] = std::copysign(size + std::clamp(share, 0.0, 1.0) * (speed_mm_s / stride - size), s[6]);
+  Normalise(s);
+}
+
 Eigen::VectorXd ManifoldStateModel::DiffusionStd() const {
   Eigen::VectorXd std(9);
   std << d_.phase_diffusion, d_.gait_diffusion, d_.scale_diffusion, d_.root_diffusion_mm, d_.root_diffusion_mm,

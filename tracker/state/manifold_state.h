@@ -15,7 +15,9 @@
 //           heading when the cadence is negative).
 // The cadence keeps its sign: its noise never takes a walker from forwards to backwards
 // (the tracker negates every particle's cadence at once when the estimates' travel goes
-// against their dynamics: tracker/filter/travel_check.h).
+// against their dynamics: tracker/filter/travel_check.h), and a walker who stops keeps
+// the way they were going (Pace brings the cadence down to min_cadence, the legs all but
+// still).
 // Assumed: one person walking on a flat floor (y = 0, or the height the tracker learns:
 // StateModel::SetFloor), facing where they go or its opposite.
 #pragma once
@@ -37,14 +39,21 @@ struct ManifoldDynamics {
   // all helped the turning tuning clip (147 -> 137 mm) and hurt the occluded monocular one
   // (153 -> 162 mm) and a monocular straight walk, where the heading is what places the
   // body in depth; the mixture was chosen on the realism tuning clips (4 seeds).
-  // (Standing still: letting the cadence fall to 0.1 changed none of them beyond the
-  // seeds' spread, so it stays at 0.5.)
   double heading_noise_deg = 1.0;
   double turn_share = 0.1, turn_noise_deg = 6.0;
   double root_noise_mm = 8;
   double size_noise = 0.001;
   double width_noise = kWidthNoise;
-  double min_cadence = 0.5, max_cadence = 1.6;  // cycles per second, either way
+  // Cycles per second, either way. A walker who stops is at min_cadence: a twentieth of a
+  // cycle a second, a standing person's sway, and above 0 so that the annealing's
+  // diffusion (0.03 at its first layer) hardly ever turns the walk's direction through a
+  // stop (from 0.05 it takes a 3-sigma step). The tracker brings a stop's cadence down
+  // (TrackerOptions::pace); the dynamics alone never do, as each frame is fitted alone.
+  double min_cadence = 0.05, max_cadence = 1.6;
+  // The least cadence when nothing paces it (TrackerOptions::pace off): a slow walk's.
+  // Free down to min_cadence without the pace, walkers at 1 m/s drifted to 0.4 cycles a
+  // second (07_03, 4 seeds).
+  double unpaced_min_cadence = 0.5;
   double min_size = 0.75, max_size = 1.3;
   double min_width = kMinWidth, max_width = kMaxWidth;
   // A start without a manifold point draws the stride scale from N(1, start_scale_std)
@@ -70,6 +79,7 @@ class ManifoldStateModel : public StateModel {
   const Skeleton& skeleton() const override { return model_.skeleton(); }
   void Sample(const InitialGuess& guess, Random* random, double* state) const override;
   void Predict(double dt, Random* random, double* state) const override;
+  void Pace(double speed_mm_s, double share, double* state) const override;
   Eigen::VectorXd DiffusionStd() const override;
   void Normalise(double* state) const override;
   double Period(int dimension) const override;

@@ -882,6 +882,59 @@ TEST(Tracker, AWalkerGoingBackwardsIsTrackedFacingTheirWay) {
   EXPECT_LT(hips_off_deg(0, 50), 30);
 }
 
+// A walker who stops for a second (07_01 held half a second in, jgpm render --pause) is
+// tracked standing: with the pace (TrackerOptions::pace) the cadence falls to a stand
+// within the stop, where without it the dynamics kept stepping at 0.6 cycles a second and
+// the annealing pulled the walker back every frame; either way the root stays on the
+// standing walker, and the walk goes on afterwards.
+TEST(Tracker, AWalkerWhoStopsIsTrackedStandingStill) {
+  const Fixture& f = Shared();
+  constexpr int kStopFrame = 15, kStopFrames = 30, kClipFrames = 55;
+  const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
+                             (test::CmuRoot() / "subjects/07/07_01.amc").string()};
+  const Skeleton skeleton = ReadAsf(source.asf);
+  const Motion motion = ReadAmc(source.amc, skeleton);
+  ClipOptions clip = SmallClip(kClipFrames);
+  clip.pauses = {{kStopFrame / 30.0, kStopFrames / 30.0}};
+  test::TempDir dir;
+  RenderClip(skeleton, motion, source, {}, clip, (dir.path() / "clip").string());
+  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
+  struct Run {
+    double rate_at_end_of_stop = 0, worst_root_in_stop_mm = 0, root_at_end_mm = 0;
+  };
+  const auto run = [&](bool pace) {
+    TrackerOptions options;
+    options.annealing.particles = 150;
+    options.pace = pace;
+    Tracker tracker(*f.loaded, truth.cameras, options);
+    std::vector<Frame> frames;
+    for (int k = 0; k < kClipFrames; ++k) frames.push_back(ClipFrameAt(truth, dir.path() / "clip", k));
+    EXPECT_TRUE(tracker.StartFromFrames({frames.begin(), frames.begin() + kStopFrame}));
+    const int rate = tracker.state_model().placement().rate;
+    Run r;
+    std::string line;
+    for (int k = 0; k < kClipFrames; ++k) {
+      const TrackedFrame out = tracker.Step(frames[k]);
+      EXPECT_EQ(out.status, TrackStatus::kTracked) << k;
+      const double root = (out.joints_mm.col(0) - truth.frames[k].joints_mm.col(0)).norm();
+      if (k >= kStopFrame && k < kStopFrame + kStopFrames) r.worst_root_in_stop_mm = std::max(r.worst_root_in_stop_mm, root);
+      if (k == kStopFrame + kStopFrames - 1) r.rate_at_end_of_stop = out.state[rate];
+      if (k == kClipFrames - 1) r.root_at_end_mm = root;
+      if (k % 5 == 4) line += " " + std::to_string(out.state[rate]).substr(0, 5);
+    }
+    std::printf("pace %d: cadence every 5th frame%s; root off by %.0f mm at worst while standing, %.0f at the end\n",
+                pace, line.c_str(), r.worst_root_in_stop_mm, r.root_at_end_mm);
+    return r;
+  };
+  const Run paced = run(true), unpaced = run(false);
+  EXPECT_LT(std::abs(paced.rate_at_end_of_stop), 0.25);
+  EXPECT_GT(std::abs(unpaced.rate_at_end_of_stop), 0.4);
+  for (const Run& r : {paced, unpaced}) {
+    EXPECT_LT(r.worst_root_in_stop_mm, 150);
+    EXPECT_LT(r.root_at_end_mm, 150);
+  }
+}
+
 // Two cameras whose blobs hold a shadow cast towards them, attached at the feet, and
 // one whose blob is the walker alone: the shadowed two read the place too near them and
 // agree with each other, and the median of the three readings is theirs. The start tries

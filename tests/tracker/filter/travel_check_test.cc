@@ -43,6 +43,24 @@ TEST(TravelCheck, AWalkGoingAgainstItsDynamicsIsSeenOnceTheWindowAndStreakAreFul
   EXPECT_EQ(Fires(1200, 30, 30 + 180, 60, never), (std::vector<int>{}));
 }
 
+// The speed over the window, by hand: unknown (< 0) until the window is full, then the
+// walk's, whichever way it goes and whether or not the check is on.
+TEST(TravelCheck, TheSpeedIsTheWindowsTravelOverItsSpan) {
+  TravelCheckOptions never;
+  never.streak = 0;
+  for (const TravelCheckOptions& options : {TravelCheckOptions{}, never}) {
+    TravelCheck check(options);
+    for (int k = 0; k < 30; ++k) {
+      const double t = k / kFps;
+      check.Against(t, Eigen::Vector2d(-600 * t, 800 * t), 0);  // 1 m/s
+      if (t < options.window_s - 1e-9) EXPECT_LT(check.Speed(), 0) << k;
+      else EXPECT_NEAR(check.Speed(), 1000, 1e-9) << k;
+    }
+    check.Clear();
+    EXPECT_LT(check.Speed(), 0);
+  }
+}
+
 // A frame whose place jumps back (a relocation) goes the dynamics' way over the window and
 // breaks the streak, which starts again.
 TEST(TravelCheck, AStreakBrokenStartsAgain) {
