@@ -206,9 +206,7 @@ bool ParsePlacement(const std::string& text, ClipPlacement* placement) {
 bool ParsePause(const std::string& text, ClipPause* pause) {
   ClipPause p;
   char end = 0;
-  if (std::sscanf(text.c_str(), "%lf,%lf%c", &p.at_s, &p.for_s, &end) != 2 || !(p.at_s >= 0 && p.at_s < 1e6) ||
-      !(p.for_s > 0 && p.for_s <= 60))
-    return false;
+  if (std::sscanf(text.c_str(), "%lf,%lf%c", &p.at_s, &p.for_s, &end) != 2 || !p.Valid()) return false;
   *pause = p;
   return true;
 }

@@ -91,9 +91,10 @@ bool ParsePlacement(const std::string& text, ClipPlacement* placement);
 // for `for_s` seconds, then walks on from there (tracker/clip/synthetic_clip.h).
 struct ClipPause {
   double at_s = 0, for_s = 0;
+  bool Valid() const { return at_s >= 0 && at_s < 1e6 && for_s > 0 && for_s <= 60; }  // NaN is not
 };
 
-// "AT,FOR" (jgpm render --pause): two finite numbers, AT >= 0, 0 < FOR <= 60.
+// "AT,FOR" (jgpm render --pause): two numbers, AT >= 0, 0 < FOR <= 60.
 bool ParsePause(const std::string& text, ClipPause* pause);
 
 struct ClipPerson {

@@ -39,7 +39,7 @@ bool ClipOptions::Check(std::string* why) const {
     return false;
   }
   for (const ClipPause& p : pauses) {
-    if (!(p.at_s >= 0 && p.at_s < 1e6 && p.for_s > 0 && p.for_s <= 60)) {
+    if (!p.Valid()) {
       if (why) *why = "pause: expected AT >= 0 s and 0 < FOR <= 60 s";
       return false;
     }

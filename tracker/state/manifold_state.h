@@ -52,7 +52,7 @@ struct ManifoldDynamics {
   double min_cadence = 0.05, max_cadence = 1.6;
   // The least cadence when nothing paces it (TrackerOptions::pace off): a slow walk's.
   // Free down to min_cadence without the pace, walkers at 1 m/s drifted to 0.4 cycles a
-  // second (07_03, 4 seeds).
+  // second (07_03 seed 1: 0.37-0.4).
   double unpaced_min_cadence = 0.5;
   double min_size = 0.75, max_size = 1.3;
   double min_width = kMinWidth, max_width = kMaxWidth;
