@@ -269,11 +269,6 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   // unfitted, 4 seeds, MOTA from the masks / from the video: the 3-walker crossing 0.977 /
   // 0.976 -> 0.954 / 0.975 (half a switch), the plaza 0.869 / 0.882 -> 0.824 / 0.911.
   options.predict_bad_frames = false;
-  // Nor is the cadence paced (and so it stays at walking cadences): a person's estimates
-  // jump between neighbours more than a walker's alone, and the speed they seem to go with
-  // them. Paced, 2 seeds of the crowd suite, MOTA: the 3-walker crossing 0.966 -> 0.948,
-  // the rest within 0.002; two side by side in one blob, 137 -> 160 mm (the test below).
-  options.pace = false;
   // The start's own choice: the person nearest where the candidate was first seen (the
   // start's first frame).
   options.person = PersonPreference::Near(c.places.front(), options_.birth_clear_mm);

@@ -130,7 +130,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
     if (model.HasManifold()) {
       ManifoldDynamics dynamics;
       if (options.known_size) dynamics.size_noise = dynamics.size_diffusion = 0, dynamics.min_size = dynamics.max_size = 1;
-      if (!options.pace) dynamics.min_cadence = dynamics.unpaced_min_cadence;
+      if (!options.pace) dynamics.min_cadence = dynamics.walking_min_cadence;
       state_model_ = std::make_unique<ManifoldStateModel>(model, *table_, dynamics);
     } else {
       LatentDynamics dynamics;

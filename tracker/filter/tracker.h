@@ -171,16 +171,17 @@ struct TrackerOptions {
   // the direction of travel; this turns it.
   TravelCheckOptions travel;
   // The cadence follows the pace: after each frame explained well, every particle's
-  // cadence moves dt / travel.window_s of the way to the one that carries it at the speed
-  // the estimates went over the travel check's window (StateModel::Pace). Each frame is
-  // fitted alone, so the annealing hardly tells cadences apart (the place and the phase
-  // are put where the frame says, whatever the cadence predicted): a walker who stopped
-  // was predicted stepping on at 0.6 cycles a second and pulled back every frame, and
-  // with the cadence free down to a stand (manifold_state.h) walkers at 1 m/s drifted to
-  // 0.4 cycles a second. The share is the window's: a time constant of one window, the
-  // span the speed is seen over. Only below walking pace (300 mm/s) was tried too, and
-  // lost on the tuning clips (4 seeds, bodytrack 14 mean absolute mm: 109.0 against 107.5
-  // for the five without a stop; 105.8 without the pace, with the cadence at 0.5 or more).
+  // cadence moves dt / travel.window_s of the way to the one the state model gives the
+  // speed the estimates went over the travel check's window (StateModel::Pace: under 300
+  // mm/s the cadence that covers it, down to a stand; faster, a slow walk's or more). Each
+  // frame is fitted alone, so the annealing hardly tells cadences apart (the place and
+  // the phase are put where the frame says, whatever the cadence predicted): a walker who
+  // stopped was predicted stepping on at 0.6 cycles a second and pulled back every frame.
+  // The share is the window's: a time constant of one window, the span the speed is seen
+  // over. 4 seeds, bodytrack 14 mean absolute mm, without -> with: tuning clips 99.5 ->
+  // 98.2 (the stop 67.8 -> 50.3); setting the cadence at every speed, 98.1 there, but the
+  // single walker of vtest.avi was lost 4 times (manifold_state.h). Off, the cadence
+  // stays at walking_min_cadence or more.
   bool pace = true;
   // A frame the estimate explains badly (mean IoU under lost_iou) is not fitted: the
   // particles stay as predicted, and the person walks on at their pace. Of every suite

@@ -50,10 +50,20 @@ struct ManifoldDynamics {
   // stop (from 0.05 it takes a 3-sigma step). The tracker brings a stop's cadence down
   // (TrackerOptions::pace); the dynamics alone never do, as each frame is fitted alone.
   double min_cadence = 0.05, max_cadence = 1.6;
-  // The least cadence when nothing paces it (TrackerOptions::pace off): a slow walk's.
-  // Free down to min_cadence without the pace, walkers at 1 m/s drifted to 0.4 cycles a
+  // The least cadence of a walker (a slow walk's): always when nothing paces it
+  // (TrackerOptions::pace off), and where the pace sees them go at stop_speed_mm_s or
+  // faster. Free down to min_cadence there, walkers at 1 m/s drifted to 0.4 cycles a
   // second (07_03 seed 1: 0.37-0.4).
-  double unpaced_min_cadence = 0.5;
+  double walking_min_cadence = 0.5;
+  // Slower than this the pace sets the cadence that covers the speed (a stop, a shuffle);
+  // faster, it only keeps the cadence at walking_min_cadence or more, and the annealing
+  // chooses it. Set to cover every speed, the pace fed itself where the images say little
+  // of depth: a monocular estimate follows its prediction along the line of sight, so
+  // the speed it is seen to go is the cadence's own, and on vtest.avi (--person auto, one
+  // camera 5.7 m up) the cadence ran to 1.6 and the walker was lost 4 times (49 frames,
+  // against 2 without the pace). 300 mm/s: a quarter of a walking pace, above what a
+  // standing person's estimate wanders (2-8 mm over a 1.5 s stop on 07_07).
+  double stop_speed_mm_s = 300;
   double min_size = 0.75, max_size = 1.3;
   double min_width = kMinWidth, max_width = kMaxWidth;
   // A start without a manifold point draws the stride scale from N(1, start_scale_std)

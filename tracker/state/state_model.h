@@ -75,9 +75,10 @@ class StateModel {
   // then Normalise.
   void Diffuse(double scale, Random* random, double* state) const;
   virtual Eigen::VectorXd DiffusionStd() const = 0;
-  // Moves the rate `share` (0-1) of the way to the one that carries the state at
-  // `speed_mm_s` (>= 0) along its heading, its direction kept (the tracker's pace: the
-  // speed its estimates are seen to go). Models whose rate is not a cadence: unchanged.
+  // Moves the rate `share` (0-1) of the way to the one the model gives a person seen going
+  // `speed_mm_s` (>= 0; the tracker's pace: the speed its estimates are seen to go), its
+  // direction kept (manifold_state.h: a stop's, the one that covers it; a walker's, at
+  // least a slow walk's). Models whose rate is not a cadence: unchanged.
   virtual void Pace(double /*speed_mm_s*/, double /*share*/, double* /*state*/) const {}
   // Wraps periodic coordinates and clamps bounded ones.
   virtual void Normalise(double* state) const = 0;

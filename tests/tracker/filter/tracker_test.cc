@@ -883,10 +883,13 @@ TEST(Tracker, AWalkerGoingBackwardsIsTrackedFacingTheirWay) {
 }
 
 // A walker who stops for a second (07_01 held half a second in, jgpm render --pause) is
-// tracked standing: with the pace (TrackerOptions::pace) the cadence falls to a stand
+// tracked standing: with the pace (TrackerOptions::pace) the cadence falls towards a stand
 // within the stop, where without it the dynamics kept stepping at 0.6 cycles a second and
 // the annealing pulled the walker back every frame; either way the root stays on the
-// standing walker, and the walk goes on afterwards.
+// standing walker, and the walk goes on afterwards. Expected with the pace: the speed seen
+// over the 0.5 s window falls under stop_speed_mm_s (300) about 0.4 s into the stop (the
+// walker went 1.3 m/s), then the cadence moves a 15th of the way to 0.05 a frame for the
+// remaining 0.6 s, from 0.9: 0.05 + 0.85 (14/15)^18 = 0.30 at the stop's end.
 TEST(Tracker, AWalkerWhoStopsIsTrackedStandingStill) {
   const Fixture& f = Shared();
   constexpr int kStopFrame = 15, kStopFrames = 30, kClipFrames = 55;
@@ -927,7 +930,7 @@ TEST(Tracker, AWalkerWhoStopsIsTrackedStandingStill) {
     return r;
   };
   const Run paced = run(true), unpaced = run(false);
-  EXPECT_LT(std::abs(paced.rate_at_end_of_stop), 0.25);
+  EXPECT_LT(std::abs(paced.rate_at_end_of_stop), 0.35);
   EXPECT_GT(std::abs(unpaced.rate_at_end_of_stop), 0.4);
   for (const Run& r : {paced, unpaced}) {
     EXPECT_LT(r.worst_root_in_stop_mm, 150);

@@ -131,29 +131,38 @@ TEST(ManifoldState, ANegativeCadenceWalksBackwards) {
   }
 }
 
-// The pace (the speed the tracker's estimates go) sets the cadence, by hand: all the way
-// (share 1), the noiseless walk then covers exactly that speed along its heading, forwards
-// or backwards as before; a share moves it that part of the way; standing still takes it
-// to min_cadence, its sign kept (a walker who stops keeps the way they were going).
-TEST(ManifoldState, ThePaceSetsTheCadenceThatCoversIt) {
+// The pace (the speed the tracker's estimates go) sets the cadence, by hand. Slower than
+// stop_speed_mm_s, all the way (share 1): the noiseless walk then covers exactly that
+// speed along its heading, forwards or backwards as before; a share moves it that part of
+// the way; standing still takes it to min_cadence, its sign kept (a walker who stops keeps
+// the way they were going). Faster, the cadence is only kept at walking_min_cadence or more.
+TEST(ManifoldState, ThePaceSetsTheCadenceThatCoversAStop) {
   const PoseTable table(Model(), {});
   const ManifoldDynamics quiet = Quiet();
   const ManifoldStateModel model(Model(), table, quiet);
   const double gait = 0.5 * (table.lo()[1] + table.hi()[1]), heading = 20 * std::numbers::pi / 180;
-  const double stride = table.StrideMm(gait, 1.1) * 0.9;
+  const double stride = table.StrideMm(gait, 1.1) * 0.9, slow = 0.8 * quiet.stop_speed_mm_s;
+  ASSERT_GT(slow / stride, quiet.min_cadence);
   for (const double cadence : {1.2, -0.8}) {
     double s[9] = {0.3, gait, 1.1, 0, 0, heading, cadence, 0.9, 1.0};
-    model.Pace(1000, 1.0, s);
-    EXPECT_NEAR(s[6], std::copysign(1000 / stride, cadence), 1e-12);
+    model.Pace(slow, 1.0, s);
+    EXPECT_NEAR(s[6], std::copysign(slow / stride, cadence), 1e-12);
     Random random(1);
     model.Predict(0.5, &random, s);
-    EXPECT_NEAR(std::hypot(s[3], s[4]), 500, 1e-9);  // 1 m/s for half a second
+    EXPECT_NEAR(std::hypot(s[3], s[4]), 0.5 * slow, 1e-9);  // for half a second
     EXPECT_NEAR(std::atan2(s[3], s[4]), cadence > 0 ? heading : heading - std::numbers::pi, 1e-9);
     s[6] = cadence;
-    model.Pace(1000, 0.25, s);
-    EXPECT_NEAR(s[6], cadence + 0.25 * (std::copysign(1000 / stride, cadence) - cadence), 1e-12);
+    model.Pace(slow, 0.25, s);
+    EXPECT_NEAR(s[6], cadence + 0.25 * (std::copysign(slow / stride, cadence) - cadence), 1e-12);
     model.Pace(0, 1.0, s);
     EXPECT_DOUBLE_EQ(s[6], std::copysign(quiet.min_cadence, cadence));
+    // Walking on: back to a walker's cadence, a share at a time; one above it is kept.
+    model.Pace(1000, 0.25, s);
+    EXPECT_NEAR(s[6], std::copysign(quiet.min_cadence + 0.25 * (quiet.walking_min_cadence - quiet.min_cadence), cadence),
+                1e-12);
+    s[6] = cadence;
+    model.Pace(1000, 1.0, s);
+    EXPECT_DOUBLE_EQ(s[6], cadence);
   }
 }
 
