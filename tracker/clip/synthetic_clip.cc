@@ -320,16 +320,18 @@ void CheckWalkers(const std::vector<ClipWalker>& walkers, const ClipOptions& opt
       ThrowInputError(w.source.amc, "the clip's fps " + FormatShortest(options.fps) + " exceeds the motion's " +
                                         FormatShortest(w.motion.frames_per_second));
     if (w.motion.NumFrames() == 0) ThrowInputError(w.source.amc, "the motion has no frames");
-    const double trial_s = (w.motion.NumFrames() - 1) / w.motion.frames_per_second;
-    for (const ClipPause& p : options.pauses)
-      if (&w == &walkers[0] && p.at_s >= trial_s)
-        ThrowInputError("--pause " + FormatShortest(p.at_s) + "," + FormatShortest(p.for_s),
-                        "the trial lasts " + cv::format("%.2f", trial_s) + " s: a stop must begin within it");
     const ClipPlacement& p = w.placement;
     if (p.placed && !(std::isfinite(p.at_x_mm) && std::isfinite(p.at_z_mm) && std::isfinite(p.heading_deg) &&
                       std::isfinite(p.delay_s)))
       ThrowInputError(w.source.amc, "its placement has a value that is not a finite number");
   }
+  // The clip is the first walker's trial: its stops must fall within it.
+  const Motion& first = walkers[0].motion;
+  const double trial_s = (first.NumFrames() - 1) / first.frames_per_second;
+  for (const ClipPause& p : options.pauses)
+    if (p.at_s >= trial_s)
+      ThrowInputError("--pause " + FormatShortest(p.at_s) + "," + FormatShortest(p.for_s),
+                      "the trial lasts " + cv::format("%.2f", trial_s) + " s: a stop must begin within it");
 }
 
 }  // namespace

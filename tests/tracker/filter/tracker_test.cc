@@ -46,6 +46,14 @@ ClipOptions SmallClip(int frames) {
   return clip;
 }
 
+// The test subject's walk (07_01), read from the CMU data.
+struct Walk0701 {
+  ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
+                       (test::CmuRoot() / "subjects/07/07_01.amc").string()};
+  Skeleton skeleton = ReadAsf(source.asf);
+  Motion motion = ReadAmc(source.amc, skeleton);
+};
+
 // An ML-JGPM torus prior from five training trials (subjects 02, 05, 35), a few full
 // iterations (the table and the tracker take whatever the model is), and a 25-frame clip
 // of the test subject from the default two cameras at 160x120. Made once per program.
@@ -63,12 +71,9 @@ const Fixture& Shared() {
     f->model = f->dir.path() / "mljgpm.json";
     WriteModelFile(f->model, *model);
 
-    const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
-                               (test::CmuRoot() / "subjects/07/07_01.amc").string()};
-    const Skeleton skeleton = ReadAsf(source.asf);
-    const Motion motion = ReadAmc(source.amc, skeleton);
+    const Walk0701 walk;
     f->clip = f->dir.path() / "clip";
-    RenderClip(skeleton, motion, source, {}, SmallClip(kFrames), f->clip.string());
+    RenderClip(walk.skeleton, walk.motion, walk.source, {}, SmallClip(kFrames), f->clip.string());
     f->loaded = ReadModelFile(f->model);
     f->truth = ReadGroundTruth(f->clip / "ground_truth.json");
     return true;
@@ -455,13 +460,11 @@ TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
                                     {centre.x(), 900, centre.z()});
   test::TempDir dir;
   {
-    const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
-                               (test::CmuRoot() / "subjects/07/07_01.amc").string()};
-    const Skeleton skeleton = ReadAsf(source.asf);
+    const Walk0701 walk;
     ClipOptions clip;
     clip.max_frames = kFrames;
     clip.contact_sheet = false;
-    RenderClip(skeleton, ReadAmc(source.amc, skeleton), source, {above}, clip, (dir.path() / "clip").string());
+    RenderClip(walk.skeleton, walk.motion, walk.source, {above}, clip, (dir.path() / "clip").string());
   }
   const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
   const auto run = [&](bool told, std::vector<double>* size) {
@@ -842,15 +845,12 @@ TEST(Tracker, AWalkerFacingAwayFromTheParticlesIsComeRoundTo) {
 TEST(Tracker, AWalkerGoingBackwardsIsTrackedFacingTheirWay) {
   const Fixture& f = Shared();
   constexpr int kBackFrames = 40;
-  const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
-                             (test::CmuRoot() / "subjects/07/07_01.amc").string()};
-  const Skeleton skeleton = ReadAsf(source.asf);
-  Motion motion = ReadAmc(source.amc, skeleton);
+  Walk0701 walk;
   const int mocap_frames = kBackFrames * 4;  // 120 fps to the clip's 30
-  ASSERT_GE(motion.values.rows(), mocap_frames);
-  motion.values = RowMatrixXd(motion.values.topRows(mocap_frames).colwise().reverse());
+  ASSERT_GE(walk.motion.values.rows(), mocap_frames);
+  walk.motion.values = RowMatrixXd(walk.motion.values.topRows(mocap_frames).colwise().reverse());
   test::TempDir dir;
-  RenderClip(skeleton, motion, source, {}, SmallClip(kBackFrames), (dir.path() / "clip").string());
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, SmallClip(kBackFrames), (dir.path() / "clip").string());
   const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
   const auto hips_deg = [](const Skeleton& bones, const Eigen::Matrix3Xd& joints) {
     const Eigen::Vector3d across = joints.col(bones.FindBone("lhipjoint")) - joints.col(bones.FindBone("rhipjoint"));
@@ -870,7 +870,7 @@ TEST(Tracker, AWalkerGoingBackwardsIsTrackedFacingTheirWay) {
     for (int k = 0; k < kBackFrames; ++k) {
       const TrackedFrame out = tracker.Step(frames[k]);
       const double d = std::abs(std::remainder(
-          hips_deg(f.loaded->skeleton(), out.joints_mm) - hips_deg(skeleton, truth.frames[k].joints_mm), 360.0));
+          hips_deg(f.loaded->skeleton(), out.joints_mm) - hips_deg(walk.skeleton, truth.frames[k].joints_mm), 360.0));
       line += " " + std::to_string(static_cast<int>(d));
       if (k >= kBackFrames - 10) off += d / 10;
     }
@@ -893,14 +893,11 @@ TEST(Tracker, AWalkerGoingBackwardsIsTrackedFacingTheirWay) {
 TEST(Tracker, AWalkerWhoStopsIsTrackedStandingStill) {
   const Fixture& f = Shared();
   constexpr int kStopFrame = 15, kStopFrames = 30, kClipFrames = 55;
-  const ClipSource source = {(test::CmuRoot() / "subjects/07/07.asf").string(),
-                             (test::CmuRoot() / "subjects/07/07_01.amc").string()};
-  const Skeleton skeleton = ReadAsf(source.asf);
-  const Motion motion = ReadAmc(source.amc, skeleton);
+  const Walk0701 walk;
   ClipOptions clip = SmallClip(kClipFrames);
   clip.pauses = {{kStopFrame / 30.0, kStopFrames / 30.0}};
   test::TempDir dir;
-  RenderClip(skeleton, motion, source, {}, clip, (dir.path() / "clip").string());
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, clip, (dir.path() / "clip").string());
   const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
   struct Run {
     double rate_at_end_of_stop = 0, worst_root_in_stop_mm = 0, root_at_end_mm = 0;
