@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <optional>
 
@@ -165,17 +166,71 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
 
 Tracker::~Tracker() = default;
 
+void Tracker::LookFor(const Frame& frame) {
+  unstarted_.push_back(Locate(frame));
+  if (unstarted_.size() > static_cast<size_t>(std::max(1, options_.start_frames))) unstarted_.pop_front();
+  if (!frame.dropped) StartFrom({unstarted_.begin(), unstarted_.end()}, /*at_last=*/true);
+}
+
+Tracker::Sightings Tracker::Locate(const Frame& frame) const {
+  Sightings seen;
+  seen.index = frame.index;
+  seen.time_s = frame.time_s;
+  seen.may_hide = !frame.hidden.empty();
+  if (!frame.dropped) seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, frame.hidden);
+  return seen;
+}
+
 bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer,
                     std::vector<cv::Rect>* boxes, bool at_last) const {
+  std::vector<Sightings> seen;
+  for (const Frame& f : frames) seen.push_back(Locate(f));
+  return Guess(seen, guess, prefer, boxes, at_last);
+}
+
+bool Tracker::ComingIn(const std::vector<PersonSighting>& chain, size_t first, Eigen::Vector2d* direction) const {
+  size_t before = first;
+  while (before > 0 && !chain[before - 1].found) --before;
+  if (before == 0) return false;
+  const PersonSighting& slice = chain[before - 1];
+  const PersonSighting& whole = chain[first];
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int cameras = 0;
+  for (size_t c = 0; c < cameras_.size() && c < slice.boxes.size() && c < whole.boxes.size(); ++c) {
+    const cv::Rect& cut = slice.boxes[c];
+    const cv::Rect& clear = whole.boxes[c];
+    const auto at = [&](const cv::Rect& box, bool left) {
+      return box.area() > 0 && (left ? box.x <= 0 : box.x + box.width >= cameras_[c].width);
+    };
+    const bool from_left = at(cut, true) && clear.area() > 0 && !at(clear, true);
+    const bool from_right = at(cut, false) && clear.area() > 0 && !at(clear, false);
+    if (from_left == from_right) continue;
+    // Across the view: the image's horizontal on the floor (the camera's right axis).
+    const Eigen::Vector3d right = cameras_[c].cam_from_world_rotation.row(0).transpose();
+    const Eigen::Vector2d across = Eigen::Vector2d(right.x(), right.z()).normalized();
+    if (!across.allFinite()) continue;  // looking straight down
+    sum += from_left ? across : Eigen::Vector2d(-across);
+    ++cameras;
+  }
+  // Cameras that disagree (one saw them come in from the left, another going the opposite
+  // way) say nothing.
+  if (cameras == 0 || !(sum.norm() > 0.5 * cameras)) return false;
+  *direction = sum.normalized();
+  return true;
+}
+
+bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, const PersonPreference& prefer,
+                    std::vector<cv::Rect>* boxes, bool at_last) const {
+  if (seen.empty()) return false;
   std::vector<std::vector<PersonSighting>> people;
   std::vector<double> times;
-  for (const Frame& f : frames) {
-    if (f.dropped) continue;
-    people.push_back(LocatePeople(cameras_, f.masks, 60, options_.split_merged_starts, f.hidden));
-    times.push_back(f.time_s - frames.front().time_s);
+  for (const Sightings& s : seen) {
+    people.push_back(s.people);
+    times.push_back(s.time_s - seen.front().time_s);
   }
   // The person followed from a first sighting: in each frame the one nearest where they
-  // were last found, within the locator's agreement (1 m) and a brisk walk (2 m/s) since.
+  // were last found, within the locator's agreement (1 m) and a brisk walk (2 m/s) since;
+  // after it, and before it (where they were coming into view: slices cut by a side edge).
   const auto follow = [&](size_t first, const PersonSighting& from) {
     std::vector<PersonSighting> chain(people.size());
     chain[first] = from;
@@ -184,31 +239,40 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
                                                                 1000 + 2000 * (times[i] - times[last])));
       if (chain[i].found) last = i;
     }
+    for (size_t i = first, next = first; i-- > 0;) {
+      chain[i] = ChoosePerson(people[i], PersonPreference::Near(chain[next].floor_mm,
+                                                                1000 + 2000 * (times[next] - times[i])));
+      if (chain[i].found) next = i;
+    }
     return chain;
   };
   // A start is made on someone wholly in some view: a slice cut by an image's side edge
   // (someone entering) can be anything from an arm to a back; the frames after may follow
-  // it.
-  size_t first = 0;
+  // it. The first frame with such a person (the one `prefer` asks for: a restart's, seen
+  // within reach, may be out of it in the frames before).
   const auto whole = [](const PersonSighting& s) { return s.whole; };
-  while (first < people.size() && std::none_of(people[first].begin(), people[first].end(), whole)) ++first;
-  if (first == people.size()) return false;
-  people[first].erase(std::remove_if(people[first].begin(), people[first].end(),
-                                     [](const PersonSighting& s) { return !s.whole; }),
-                      people[first].end());
+  size_t first = 0;
   std::vector<PersonSighting> sightings;
-  if (prefer.kind == PersonPreference::Kind::kStrongest) {
-    int most = -1;
-    for (const PersonSighting& candidate : people[first]) {
-      std::vector<PersonSighting> chain = follow(first, candidate);
-      const int seen = static_cast<int>(std::count_if(chain.begin(), chain.end(), [](const PersonSighting& s) { return s.found; }));
-      if (seen > most) most = seen, sightings = std::move(chain);
+  for (; first < people.size(); ++first) {
+    std::vector<PersonSighting> wholes;
+    std::copy_if(people[first].begin(), people[first].end(), std::back_inserter(wholes), whole);
+    if (wholes.empty()) continue;
+    if (prefer.kind == PersonPreference::Kind::kStrongest) {
+      int most = -1;
+      for (const PersonSighting& candidate : wholes) {
+        std::vector<PersonSighting> chain = follow(first, candidate);
+        const int seen = static_cast<int>(std::count_if(chain.begin(), chain.end(), [](const PersonSighting& s) { return s.found; }));
+        if (seen > most) most = seen, sightings = std::move(chain);
+      }
+      break;
     }
-  } else {
-    const PersonSighting chosen = ChoosePerson(people[first], prefer);
-    if (!chosen.found) return false;
-    sightings = follow(first, chosen);
+    const PersonSighting chosen = ChoosePerson(wholes, prefer);
+    if (chosen.found) {
+      sightings = follow(first, chosen);
+      break;
+    }
   }
+  if (first == people.size()) return false;
   if (boxes) {
     size_t last = first;
     for (size_t i = first; at_last && i < sightings.size(); ++i)
@@ -219,14 +283,18 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   // found (least squares in time), so a first frame where nobody was found still starts
   // in the right place.
   // Places read from feet when some frames have them (a walker's feet are cut off only
-  // near a camera); the adult-height guesses, less sure, otherwise.
-  const bool feet = std::any_of(sightings.begin(), sightings.end(),
+  // near a camera); the adult-height guesses, less sure, otherwise. The slices before the
+  // first whole sighting are not used: a slice's place is pinned to the image's edge (its
+  // axis is there) while the walker comes in, so through them the walk went backwards
+  // (tracker_test's walker coming in from the side: the slices 70 mm ahead of the whole
+  // one, 250 mm of travel).
+  const bool feet = std::any_of(sightings.begin() + static_cast<std::ptrdiff_t>(first), sightings.end(),
                                 [](const PersonSighting& s) { return s.found && s.feet_seen; });
   const auto used = [feet](const PersonSighting& s) { return s.found && s.feet_seen == feet; };
   std::vector<double> heights;
   double n = 0, st = 0, stt = 0;
   Eigen::Vector2d sp = Eigen::Vector2d::Zero(), stp = Eigen::Vector2d::Zero();
-  for (size_t i = 0; i < sightings.size(); ++i) {
+  for (size_t i = first; i < sightings.size(); ++i) {
     const PersonSighting& s = sightings[i];
     if (!used(s)) continue;
     if (s.height_mm > 0) heights.push_back(s.height_mm);
@@ -268,11 +336,18 @@ bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const
   }
   // A walker faces where they go: the fitted walk gives the heading and the speed, when
   // it went far enough in the frames looked at to be told from noise.
-  const double travelled = velocity.norm() * (times.empty() ? 0 : times.back());
+  const double travelled = velocity.norm() * times.back();
   if (travelled > 60) {
     guess->heading_rad = std::atan2(velocity.x(), velocity.y());
     guess->heading_std_rad = 25 * std::numbers::pi / 180;
     guess->speed_mm_s = velocity.norm();
+  } else if (Eigen::Vector2d in; first > 0 && ComingIn(sightings, first, &in)) {
+    // Coming in from a side edge, seen whole too briefly to see them go: away from it,
+    // across the view, give or take 45 degrees (a walker crossing it obliquely). The
+    // image's horizontal rather than across the line of sight was chosen on the tuning
+    // clips (README, "People entering, leaving, cut off"; 35_29 49.1 against 49.8 mm).
+    guess->heading_rad = std::atan2(in.x(), in.y());
+    guess->heading_std_rad = 45 * std::numbers::pi / 180;
   } else {
     guess->heading_std_rad = std::numbers::pi;  // standing or unseen: any heading
   }
@@ -287,6 +362,7 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, frame);
   started_ = true;
   fresh_ = true;
+  unstarted_.clear();
   // A start that knows the pose (--init truth) knows which leg is forward.
   frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
   bad_frames_ = 0;
@@ -300,19 +376,26 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
 }
 
 bool Tracker::StartFromFrames(const std::vector<Frame>& frames, bool at_last) {
+  std::vector<Sightings> seen;
+  for (const Frame& f : frames) seen.push_back(Locate(f));
+  return StartFrom(seen, at_last);
+}
+
+bool Tracker::StartFrom(const std::vector<Sightings>& seen, bool at_last) {
+  if (seen.empty()) return false;
   InitialGuess guess;
   std::vector<cv::Rect> boxes;
   // A restart looks for the person within a brisk walk (2 m/s) of where they were last
   // explained well, and the locator's 1 m: a ball passing 4 m away is not them (tuning clip
   // 35_28: a walker lost behind a pillar was restarted on one, 4.2 m off, size 0.76).
   PersonPreference prefer = next_choice_;
-  if (prefer.kind == PersonPreference::Kind::kNearPlace && !frames.empty() && last_good_time_s_ > -1e8)
-    prefer.within_mm = std::min(prefer.within_mm, 1000 + 2000 * (frames.back().time_s - last_good_time_s_));
-  if (!Guess(frames, &guess, prefer, &boxes, at_last)) return false;
-  StartAt(guess, at_last ? frames.back().index : frames.front().index);
+  if (prefer.kind == PersonPreference::Kind::kNearPlace && last_good_time_s_ > -1e8)
+    prefer.within_mm = std::min(prefer.within_mm, 1000 + 2000 * (seen.back().time_s - last_good_time_s_));
+  if (!Guess(seen, &guess, prefer, &boxes, at_last)) return false;
+  StartAt(guess, at_last ? seen.back().index : seen.front().index);
   start_boxes_ = boxes;  // where to look at the start: the person's blobs then
   // Where something may hide the feet (others, painted occluders): a head alone is no size.
-  const bool may_hide = !frames.empty() && !frames.back().hidden.empty();
+  const bool may_hide = seen.back().may_hide;
   held_size_ = !guess.size_seen && may_hide && !options_.known_size ? guess.size : 0;
   return true;
 }
@@ -368,7 +451,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     f->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     last_time_s_ = frame.time_s;
   };
-  if (!started_ && !frame.dropped) StartFromFrames({frame});
+  if (!started_) LookFor(frame);
   if (!started_) {
     out.status = TrackStatus::kLost;
     finish(&out);
@@ -436,7 +519,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       hidden_ = false;
       started_ = false;
       out.status = TrackStatus::kLost;
-      if (seen.found) StartFromFrames({frame});
+      if (seen.found) LookFor(frame);
       finish(&out);
       return out;
     }
@@ -451,7 +534,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       hidden_ = false;
       started_ = false;
       out.status = TrackStatus::kLost;
-      if (located().found) StartFromFrames({frame});
+      if (located().found) LookFor(frame);
     }
     finish(&out);
     return out;
@@ -625,7 +708,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     out.status = TrackStatus::kLost;
     // Start again from the masks as soon as someone is seen.
     started_ = false;
-    if (seen.found) StartFromFrames({frame});
+    if (seen.found) LookFor(frame);
   } else {
     // Out of every view and seen by none: the estimate is the prediction.
     out.status = evidence ? TrackStatus::kTracked : TrackStatus::kPredicted;

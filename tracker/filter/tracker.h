@@ -84,6 +84,7 @@
 // SUITE=datasets_scripts/realism_tuning.txt) and run `jgpm track --seed 1..3` on each.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -302,6 +303,24 @@ class Tracker {
              std::vector<cv::Rect>* boxes = nullptr, bool at_last = false) const;
 
  private:
+  // The people one frame's masks show (LocatePeople; none when dropped), with its time.
+  struct Sightings {
+    int index = 0;
+    double time_s = 0;
+    bool may_hide = false;  // the frame has hidden pixels (others drawn, occluders painted)
+    std::vector<PersonSighting> people;
+  };
+  Sightings Locate(const Frame& frame) const;
+  bool Guess(const std::vector<Sightings>& seen, InitialGuess* guess, const PersonPreference& prefer,
+             std::vector<cv::Rect>* boxes, bool at_last) const;
+  bool StartFrom(const std::vector<Sightings>& seen, bool at_last);
+  // Whether the person followed in `chain` came into some camera's view across a side
+  // edge just before `first` (its first whole sighting: cut there before, clear of it
+  // then), and if so the way they go on the floor: away from that edge along the image's
+  // horizontal (unit, (x, z)).
+  bool ComingIn(const std::vector<PersonSighting>& chain, size_t first, Eigen::Vector2d* direction) const;
+  // Nobody tracked: the frame joins unstarted_, and a start is tried from them.
+  void LookFor(const Frame& frame);
   std::vector<cv::Rect> Regions(const std::vector<Frame>* frames) const;
   // Whether at least half of the estimate's drawing in some camera lies under the frame's
   // hidden pixels (the other people's drawings; none in a single person's frames), and
@@ -334,6 +353,10 @@ class Tracker {
   ViewAlignment alignment_;
   BodyShape shape_;
   bool started_ = false, fresh_ = false;
+  // While nobody is tracked, the last start_frames frames' sightings: a start at the first
+  // frame where someone is wholly in view reads where they were going from the frames
+  // before it, where they came in.
+  std::deque<Sightings> unstarted_;
   PersonPreference next_choice_;  // whom the next start takes
   std::vector<cv::Rect> start_boxes_;
   double last_time_s_ = 0;

@@ -760,6 +760,77 @@ TEST(Tracker, AStartFromPastFramesIsWhereTheWalkerIsAtTheLast) {
   }
 }
 
+// A walker coming into a camera's view from its side: one camera of the clip, its image
+// cut at the middle of the walker's box at the first frame on the side they come from (the
+// principal point moved with the masks, so the geometry is the clip's). Until they are
+// wholly in view the blobs are slices (no start is made on them); the start at the first
+// frame where they are whole reads their travel from the slices before it. It read one
+// frame: any heading, and on the webcam clip 39_10 a start 44 degrees off.
+TEST(Tracker, AWalkerComingInFromTheSideStartsWithTheirTravel) {
+  const Fixture& f = Shared();
+  const ClipGroundTruth& truth = f.truth;
+  // The camera the walker crosses fastest.
+  int cam = 0;
+  double fastest = 0;
+  for (size_t c = 0; c < truth.cameras.size(); ++c) {
+    const cv::Rect a = cv::boundingRect(ClipFrameAt(truth, f.clip, 0).masks[c]);
+    const cv::Rect b = cv::boundingRect(ClipFrameAt(truth, f.clip, kFrames - 1).masks[c]);
+    const double moved = std::abs((b.x + 0.5 * b.width) - (a.x + 0.5 * a.width));
+    if (moved > fastest) fastest = moved, cam = static_cast<int>(c);
+  }
+  const cv::Rect a = cv::boundingRect(ClipFrameAt(truth, f.clip, 0).masks[cam]);
+  const cv::Rect b = cv::boundingRect(ClipFrameAt(truth, f.clip, kFrames - 1).masks[cam]);
+  const bool rightwards = b.x > a.x;  // coming in from the left edge
+  Camera camera = truth.cameras[cam];
+  const int middle = a.x + a.width / 2;
+  const cv::Rect kept = rightwards ? cv::Rect(middle, 0, camera.width - middle, camera.height)
+                                   : cv::Rect(0, 0, middle + 1, camera.height);
+  camera.cx -= kept.x;
+  camera.width = kept.width;
+  const auto cut = [&](int k) {
+    Frame frame = ClipFrameAt(truth, f.clip, k);
+    frame.masks = {frame.masks[cam](kept).clone()};
+    return frame;
+  };
+  // Up to the first frame where the walker is clear of the cut edge.
+  std::vector<Frame> frames;
+  for (int k = 0; k < kFrames; ++k) {
+    frames.push_back(cut(k));
+    const cv::Rect box = cv::boundingRect(frames.back().masks[0]);
+    if (box.x > 0 && box.x + box.width < kept.width) break;
+  }
+  const int whole = static_cast<int>(frames.size()) - 1;
+  ASSERT_GE(whole, 4) << "the walker must come in over some frames";
+  ASSERT_LT(whole, kFrames - 1);
+  const Eigen::Vector3d p = truth.frames[0].joints_mm.col(0), q = truth.frames[whole].joints_mm.col(0);
+  const double heading = std::atan2(q.x() - p.x(), q.z() - p.z());
+  const auto off_deg = [&](double h) {
+    return std::abs(std::remainder(h - heading, 2 * std::numbers::pi)) * 180 / std::numbers::pi;
+  };
+  TrackerOptions options;
+  options.annealing.particles = 100;
+  Tracker tracker(*f.loaded, {camera}, options);
+  InitialGuess guess;
+  ASSERT_TRUE(tracker.Guess(frames, &guess, {}, nullptr, /*at_last=*/true));
+  std::printf("camera %d, whole in view at frame %d: heading %.1f deg off (std %.0f deg), the place %.0f mm off\n",
+              cam, whole, off_deg(guess.heading_rad), guess.heading_std_rad * 180 / std::numbers::pi,
+              std::hypot(guess.floor_mm.x() - q.x(), guess.floor_mm.y() - q.z()));
+  EXPECT_LT(guess.heading_std_rad, std::numbers::pi);  // a heading was read, not "any"
+  EXPECT_LT(off_deg(guess.heading_rad), 30);
+  EXPECT_LT(std::hypot(guess.floor_mm.x() - q.x(), guess.floor_mm.y() - q.z()), 300);  // the locator's error
+  // Stepped frame by frame (nothing started beforehand), the tracker starts there with it.
+  for (int k = 0; k <= whole; ++k) {
+    const TrackedFrame out = tracker.Step(frames[k]);
+    if (k < whole) {
+      EXPECT_EQ(out.status, TrackStatus::kLost) << k;
+    } else {
+      ASSERT_EQ(out.status, TrackStatus::kTracked);
+      std::printf("the first frame tracked: heading %.1f deg off\n", off_deg(out.heading_rad));
+      EXPECT_LT(off_deg(out.heading_rad), 30);
+    }
+  }
+}
+
 // The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).
 TEST(Tracker, TheSeedReachesTheRefinement) {
   const Fixture& f = Shared();
