@@ -168,8 +168,8 @@ Tracker::~Tracker() = default;
 
 void Tracker::LookFor(const Frame& frame) {
   unstarted_.push_back(Locate(frame));
-  if (unstarted_.size() > static_cast<size_t>(std::max(1, options_.start_frames))) unstarted_.pop_front();
-  if (!frame.dropped) StartFrom({unstarted_.begin(), unstarted_.end()}, /*at_last=*/true);
+  if (unstarted_.size() > static_cast<size_t>(std::max(1, options_.start_frames))) unstarted_.erase(unstarted_.begin());
+  if (!frame.dropped) StartFrom(std::vector<Sightings>(unstarted_), /*at_last=*/true);  // a copy: a start clears them
 }
 
 Tracker::Sightings Tracker::Locate(const Frame& frame) const {
@@ -181,11 +181,15 @@ Tracker::Sightings Tracker::Locate(const Frame& frame) const {
   return seen;
 }
 
-bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer,
-                    std::vector<cv::Rect>* boxes, bool at_last) const {
+std::vector<Tracker::Sightings> Tracker::LocateAll(const std::vector<Frame>& frames) const {
   std::vector<Sightings> seen;
   for (const Frame& f : frames) seen.push_back(Locate(f));
-  return Guess(seen, guess, prefer, boxes, at_last);
+  return seen;
+}
+
+bool Tracker::Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer,
+                    std::vector<cv::Rect>* boxes, bool at_last) const {
+  return Guess(LocateAll(frames), guess, prefer, boxes, at_last);
 }
 
 bool Tracker::ComingIn(const std::vector<PersonSighting>& chain, size_t first, Eigen::Vector2d* direction) const {
@@ -199,11 +203,11 @@ bool Tracker::ComingIn(const std::vector<PersonSighting>& chain, size_t first, E
   for (size_t c = 0; c < cameras_.size() && c < slice.boxes.size() && c < whole.boxes.size(); ++c) {
     const cv::Rect& cut = slice.boxes[c];
     const cv::Rect& clear = whole.boxes[c];
-    const auto at = [&](const cv::Rect& box, bool left) {
-      return box.area() > 0 && (left ? box.x <= 0 : box.x + box.width >= cameras_[c].width);
-    };
-    const bool from_left = at(cut, true) && clear.area() > 0 && !at(clear, true);
-    const bool from_right = at(cut, false) && clear.area() > 0 && !at(clear, false);
+    if (cut.area() == 0 || clear.area() == 0) continue;
+    const auto at_left = [](const cv::Rect& box) { return box.x <= 0; };
+    const auto at_right = [&](const cv::Rect& box) { return box.x + box.width >= cameras_[c].width; };
+    const bool from_left = at_left(cut) && !at_left(clear);
+    const bool from_right = at_right(cut) && !at_right(clear);
     if (from_left == from_right) continue;
     // Across the view: the image's horizontal on the floor (the camera's right axis).
     const Eigen::Vector3d right = cameras_[c].cam_from_world_rotation.row(0).transpose();
@@ -222,25 +226,21 @@ bool Tracker::ComingIn(const std::vector<PersonSighting>& chain, size_t first, E
 bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, const PersonPreference& prefer,
                     std::vector<cv::Rect>* boxes, bool at_last) const {
   if (seen.empty()) return false;
-  std::vector<std::vector<PersonSighting>> people;
   std::vector<double> times;
-  for (const Sightings& s : seen) {
-    people.push_back(s.people);
-    times.push_back(s.time_s - seen.front().time_s);
-  }
+  for (const Sightings& s : seen) times.push_back(s.time_s - seen.front().time_s);
   // The person followed from a first sighting: in each frame the one nearest where they
   // were last found, within the locator's agreement (1 m) and a brisk walk (2 m/s) since;
   // after it, and before it (where they were coming into view: slices cut by a side edge).
   const auto follow = [&](size_t first, const PersonSighting& from) {
-    std::vector<PersonSighting> chain(people.size());
+    std::vector<PersonSighting> chain(seen.size());
     chain[first] = from;
-    for (size_t i = first + 1, last = first; i < people.size(); ++i) {
-      chain[i] = ChoosePerson(people[i], PersonPreference::Near(chain[last].floor_mm,
+    for (size_t i = first + 1, last = first; i < seen.size(); ++i) {
+      chain[i] = ChoosePerson(seen[i].people, PersonPreference::Near(chain[last].floor_mm,
                                                                 1000 + 2000 * (times[i] - times[last])));
       if (chain[i].found) last = i;
     }
     for (size_t i = first, next = first; i-- > 0;) {
-      chain[i] = ChoosePerson(people[i], PersonPreference::Near(chain[next].floor_mm,
+      chain[i] = ChoosePerson(seen[i].people, PersonPreference::Near(chain[next].floor_mm,
                                                                 1000 + 2000 * (times[next] - times[i])));
       if (chain[i].found) next = i;
     }
@@ -253,9 +253,9 @@ bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, con
   const auto whole = [](const PersonSighting& s) { return s.whole; };
   size_t first = 0;
   std::vector<PersonSighting> sightings;
-  for (; first < people.size(); ++first) {
+  for (; first < seen.size(); ++first) {
     std::vector<PersonSighting> wholes;
-    std::copy_if(people[first].begin(), people[first].end(), std::back_inserter(wholes), whole);
+    std::copy_if(seen[first].people.begin(), seen[first].people.end(), std::back_inserter(wholes), whole);
     if (wholes.empty()) continue;
     if (prefer.kind == PersonPreference::Kind::kStrongest) {
       int most = -1;
@@ -272,7 +272,7 @@ bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, con
       break;
     }
   }
-  if (first == people.size()) return false;
+  if (first == seen.size()) return false;
   if (boxes) {
     size_t last = first;
     for (size_t i = first; at_last && i < sightings.size(); ++i)
@@ -376,9 +376,7 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
 }
 
 bool Tracker::StartFromFrames(const std::vector<Frame>& frames, bool at_last) {
-  std::vector<Sightings> seen;
-  for (const Frame& f : frames) seen.push_back(Locate(f));
-  return StartFrom(seen, at_last);
+  return StartFrom(LocateAll(frames), at_last);
 }
 
 bool Tracker::StartFrom(const std::vector<Sightings>& seen, bool at_last) {

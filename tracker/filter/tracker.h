@@ -84,7 +84,6 @@
 // SUITE=datasets_scripts/realism_tuning.txt) and run `jgpm track --seed 1..3` on each.
 #pragma once
 
-#include <deque>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -311,6 +310,7 @@ class Tracker {
     std::vector<PersonSighting> people;
   };
   Sightings Locate(const Frame& frame) const;
+  std::vector<Sightings> LocateAll(const std::vector<Frame>& frames) const;
   bool Guess(const std::vector<Sightings>& seen, InitialGuess* guess, const PersonPreference& prefer,
              std::vector<cv::Rect>* boxes, bool at_last) const;
   bool StartFrom(const std::vector<Sightings>& seen, bool at_last);
@@ -356,7 +356,7 @@ class Tracker {
   // While nobody is tracked, the last start_frames frames' sightings: a start at the first
   // frame where someone is wholly in view reads where they were going from the frames
   // before it, where they came in.
-  std::deque<Sightings> unstarted_;
+  std::vector<Sightings> unstarted_;
   PersonPreference next_choice_;  // whom the next start takes
   std::vector<cv::Rect> start_boxes_;
   double last_time_s_ = 0;
