@@ -108,10 +108,20 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     score.unexplained_px = score.observed_px - explained;
     const double normaliser = std::max<double>(score.observed_px, options_.min_foreground_px);
     score.area = (score.outside_px + score.unexplained_px) / normaliser;
-    if (!w->outline.empty() && observed) {
-      double sum = 0;
-      for (const Eigen::Vector2f& p : w->outline) sum += o.DistanceToForeground(p.x(), p.y());
-      score.outline = sum / (w->outline.size() * o.truncation_px());
+    // The outline's points beyond the image's edges are not evidence either way (the area
+    // term counts only pixels in the image too): a walker leaving the view or cut off at
+    // the bottom was pulled into it, turning 20-30 degrees as they left a webcam's side.
+    int outline_seen = 0;
+    double sum = 0;
+    if (observed) {
+      for (const Eigen::Vector2f& p : w->outline) {
+        if (!o.InImage(p.x(), p.y())) continue;
+        sum += o.DistanceToForeground(p.x(), p.y());
+        ++outline_seen;
+      }
+    }
+    if (outline_seen > 0) {
+      score.outline = sum / (outline_seen * o.truncation_px());
     } else {
       score.outline = score.observed_px > 0 ? 1.0 : 0.0;  // nothing drawn: no outline near the person
     }

@@ -11,7 +11,9 @@
 //   outline mean over points along the body's outline of the distance (px) to the nearest
 //           foreground pixel, truncated and divided by truncation_px: a wide, smooth basin
 //           where the overlap is flat (a limb just beside the mask), robust to holes and
-//           clutter because it saturates;
+//           clutter because it saturates; points beyond the image's edges are left out, as
+//           the area term leaves out the body's pixels there (what the image does not show
+//           is no evidence either way);
 //   raw     area + outline_weight * outline;
 //   cost    B (1 - exp(-raw / B)): the raw cost where it is small, never more than B. A camera is a mixture of a working view and a
 //           failed one (its segmentation lost the person, a shadow or a coat took over,

@@ -48,6 +48,10 @@ class CameraObservation {
     return distance_row_[static_cast<int>(v + 0.5f) * stride_ + static_cast<int>(u + 0.5f)];
   }
   double truncation_px() const { return truncation_px_; }
+  // Whether (u, v) is in the image at all: beyond its edges nobody knows what is there.
+  bool InImage(float u, float v) const {
+    return u >= -0.5f && v >= -0.5f && u < mask_.cols - 0.5f && v < mask_.rows - 0.5f;
+  }
 
   // The region where the person is expected: the foreground inside it, packed, and its
   // count.

@@ -2,7 +2,8 @@
 // the same images; on exact silhouettes of a real walk it is lowest at the true body and
 // grows as the body is moved, turned or taken to another phase of the walk; and the bodies
 // a one-sided score would accept (shrunk into the mask, legs collapsed onto each other)
-// cost more than the true one.
+// cost more than the true one; a body half beyond the image's edge is judged by what the
+// image shows.
 #include "tracker/filter/likelihood.h"
 
 #include <cmath>
@@ -264,6 +265,54 @@ TEST(Likelihood, ARegionOutsideTheImageIsAnEmptyRegion) {
   EXPECT_GT(nowhere[0].model_px, 500);
   EXPECT_EQ(nowhere[0].overlap_px, 0);
   EXPECT_EQ(nowhere[0].cost, nothing[0].cost);
+}
+
+// A walker half out of the image (leaving a webcam's view at its side, feet below its
+// bottom edge): the image shows nothing of what is beyond its edges, so the true body
+// costs there what it costs in full view, and less than the body moved back into the
+// image. The outline's points beyond the edges counted as far from any foreground, which
+// pulled a leaving walker into the view and turned them 20-30 degrees
+// (realism 35_16-all-webcam).
+TEST(Likelihood, WhatIsBeyondTheImagesEdgesIsNoEvidence) {
+  const Scene& s = Walk();
+  const Eigen::Matrix3Xd truth = Kinematics(s.skeleton).Compute(s.motion.Frame(120));
+  const Camera& full = s.cameras[0];  // 4.2 m to the side (+x), looking along -x
+  Eigen::Vector2d root, foot;
+  ASSERT_TRUE(full.Project(truth.col(0), &root));
+  ASSERT_TRUE(full.Project(truth.col(s.skeleton.FindBone("ltibia")), &foot));
+  Camera side = full, bottom = full;
+  side.cx += full.width - root.x();      // the root on the right edge: half the body beyond it
+  bottom.cy += full.height - foot.y();   // the knees on the bottom edge: shins and feet beyond it
+  const Eigen::Vector3d right = full.cam_from_world_rotation.row(0).transpose();
+  struct Cut {
+    const char* name;
+    Camera camera;
+    Eigen::Vector3d into_view;  // a move that brings more of the body into the image
+  };
+  for (const Cut& cut : {Cut{"side", side, -60 * right}, Cut{"bottom", bottom, Eigen::Vector3d(0, 60, 0)}}) {
+    SCOPED_TRACE(cut.name);
+    const SilhouetteLikelihood likelihood({cut.camera});
+    BodyImage image;
+    RayCaster(cut.camera).Render(Body(s, truth), &image);
+    const cv::Mat mask = image.Mask();
+    const std::vector<CameraObservation> observed = {likelihood.Observe(mask, {0, 0, full.width, full.height})};
+    ASSERT_GT(cv::countNonZero(mask), 300);
+    SilhouetteLikelihood::Workspace workspace = likelihood.NewWorkspace();
+    std::vector<CameraScore> scores;
+    const double at_truth = likelihood.Cost(Body(s, truth), observed, &workspace, &scores);
+    EXPECT_LT(scores[0].outline, 0.05);
+    EXPECT_LT(at_truth, 0.05);
+    Eigen::Matrix3Xd moved = truth;
+    moved.colwise() += cut.into_view;
+    const double into_view = likelihood.Cost(Body(s, moved), observed, &workspace);
+    moved = truth;
+    moved.colwise() -= cut.into_view;
+    const double out_of_view = likelihood.Cost(Body(s, moved), observed, &workspace);
+    std::printf("%s edge: truth %.3f (outline %.3f), 60 mm into the view %.3f, out of it %.3f\n", cut.name,
+                at_truth, scores[0].outline, into_view, out_of_view);
+    EXPECT_GT(into_view, at_truth + 0.02);
+    EXPECT_GT(out_of_view, at_truth + 0.02);
+  }
 }
 
 TEST(Likelihood, EmptyMasksAndNothingDrawnAreFinite) {
