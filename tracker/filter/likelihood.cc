@@ -108,9 +108,8 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     score.unexplained_px = score.observed_px - explained;
     const double normaliser = std::max<double>(score.observed_px, options_.min_foreground_px);
     score.area = (score.outside_px + score.unexplained_px) / normaliser;
-    // The outline's points beyond the image's edges are not evidence either way (the area
-    // term counts only pixels in the image too): a walker leaving the view or cut off at
-    // the bottom was pulled into it, turning 20-30 degrees as they left a webcam's side.
+    // Only the outline's points in the image (likelihood.h): counted beyond its edges as far
+    // from any foreground, they pulled a walker leaving a webcam's view back into it.
     int outline_seen = 0;
     double sum = 0;
     if (observed) {

@@ -269,10 +269,10 @@ TEST(Likelihood, ARegionOutsideTheImageIsAnEmptyRegion) {
 
 // A walker half out of the image (leaving a webcam's view at its side, feet below its
 // bottom edge): the image shows nothing of what is beyond its edges, so the true body
-// costs there what it costs in full view, and less than the body moved back into the
-// image. The outline's points beyond the edges counted as far from any foreground, which
-// pulled a leaving walker into the view and turned them 20-30 degrees
-// (realism 35_16-all-webcam).
+// costs there what it costs in full view, and less than the body moved 60 mm into the
+// image or out of it. The outline's points beyond the edges counted as far from any
+// foreground, which pulled a leaving walker back into the view and turned them 20-35
+// degrees (realism 35_16-all-webcam).
 TEST(Likelihood, WhatIsBeyondTheImagesEdgesIsNoEvidence) {
   const Scene& s = Walk();
   const Eigen::Matrix3Xd truth = Kinematics(s.skeleton).Compute(s.motion.Frame(120));
