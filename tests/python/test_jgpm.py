@@ -349,15 +349,17 @@ class TrackVideoTest(Fixture):
 
 
 class TrackerTest(Fixture):
-    def step_observed_masks(self, tracker, clip, names, count):
+    def step_observed_masks(self, tracker, clip, names, count, given_at=14):
         """The clip's first `count` frames of observed masks stepped through `tracker`: the
-        frames it returned, none until the start's 15 are in, then one a call."""
+        frames it returned, none until frame `given_at`, then all so far, then one a call: the
+        start looks at 15 frames (given_at 14); one person's start is also gone back over
+        a second after it (30 at 30 frames/s)."""
         import cv2
         frames = []
         for k in range(count):
             masks = [cv2.imread(str(clip / "observed" / name / f"{k:06d}.png"), cv2.IMREAD_GRAYSCALE) for name in names]
             got = tracker.step(masks)
-            self.assertEqual(len(got), 0 if k < 14 else 15 if k == 14 else 1)  # the start looks at 15 frames
+            self.assertEqual(len(got), 0 if k < given_at else given_at + 1 if k == given_at else 1)
             frames += got
             for f in got:  # people confirmed now: their estimates in frames returned before
                 for q in f.get("earlier", []):
@@ -371,14 +373,14 @@ class TrackerTest(Fixture):
 
     def test_stepping_a_clips_masks_gives_the_commands_poses(self):
         clip, out = self.dir / "clip", self.dir / "tracked"
-        run_jgpm("render", "--amc", self.data / "subjects" / "35" / "35_12.amc", "--max-frames", 24,
+        run_jgpm("render", "--amc", self.data / "subjects" / "35" / "35_12.amc", "--max-frames", 40,
                  "--no-contact-sheet", "--out", clip)
         run_jgpm("track", "--model", self.models["jgpm"], "--clip", clip, "--seed", 2, "--no-overlay", "--out", out)
         expected = json.loads((out / "poses.json").read_text())["frames"]
         names = sorted(p.stem for p in clip.glob("cam*.yaml"))
         cameras = [jgpm.Camera.from_yaml(str(clip / f"{name}.yaml")) for name in names]
         tracker = jgpm.Tracker(jgpm.load_model(self.models["jgpm"]), cameras, seed=2, threads=1)
-        estimates = self.step_observed_masks(tracker, clip, names, len(expected))
+        estimates = self.step_observed_masks(tracker, clip, names, len(expected), given_at=30)
         self.assertEqual(len(estimates), len(expected))
         tracked = 0
         for e, f in zip(estimates, expected):

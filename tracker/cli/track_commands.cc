@@ -36,6 +36,7 @@ struct TrackArguments {
   std::string size;        // a live camera's WxH
   bool no_latent_prior = false;
   bool no_body_shape = false;
+  bool no_back_over = false;
   bool no_overlay = false;
   bool show = false;
   int threads = 0;
@@ -127,6 +128,7 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.refinement.adapt_posture = a.adapt == "posture";
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.shape.enabled = !a.no_body_shape;
+  if (a.no_back_over) a.job.tracker.start_backwards_s = 0;
   a.job.working.enabled = !a.full_resolution;
   a.job.source.clip_occluders = !a.no_clip_occluders;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -263,6 +265,7 @@ struct BenchArguments {
   std::vector<std::string> baselines = {"joint-space", "no-latent-prior", "known-skeleton", "from-video"};
   bool no_budget = false;
   bool no_body_shape = false;
+  bool no_back_over = false;
   int threads = 0;
   std::string adapt = "none";
   TrackBenchOptions bench;
@@ -280,6 +283,7 @@ void RunBench(BenchArguments a) {
   a.bench.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   a.bench.tracker.refinement.adapt_posture = a.adapt == "posture";
   a.bench.tracker.shape.enabled = !a.no_body_shape;
+  if (a.no_back_over) a.bench.tracker.start_backwards_s = 0;
   {
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
@@ -472,6 +476,7 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
   track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
+  track->add_flag("--no-back-over", a->no_back_over, "do not go back over each start (its first second tracked again backwards once the track is sure: Tracker::BackOver); its frames then cost one pass and are given out as they come");
   track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
@@ -517,6 +522,7 @@ void AddTrackBench(CLI::App* bench) {
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
+  track_bench->add_flag("--no-back-over", b->no_back_over, "do not go back over each start (its first second tracked again backwards once the track is sure: Tracker::BackOver); its frames then cost one pass and are given out as they come");
   track_bench->callback([b] { RunBench(*b); });
 }
 

@@ -79,6 +79,11 @@ class PoseRefiner {
                 int frame);
   // Forgets the person (a new start).
   void Reset();
+  // Goes on from another refiner's person (the same model): its offset and posture.
+  void ContinueFrom(const PoseRefiner& other) {
+    offset_ = other.offset_;
+    posture_ = other.posture_;
+  }
   // The person's limb lengths (tracker/state/proportions.h); set between frames.
   void SetProportions(const Proportions& proportions) { placer_.SetProportions(proportions); }
   void SetFloor(double floor_mm) { placer_.SetFloor(floor_mm); }

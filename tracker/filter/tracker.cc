@@ -61,6 +61,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (start_frames < 1 || start_frames > 1000) problem = "start_frames must be in [1, 1000]";
   else if (start_particle_factor < 1 || start_particle_factor > 100) problem = "start_particle_factor must be in [1, 100]";
   else if (start_layers < 1 || start_layers > 100) problem = "start_layers must be in [1, 100]";
+  else if (!(start_backwards_s >= 0)) problem = "start_backwards_s must be >= 0 (0: never)";
   else if (!(lost_iou >= 0 && lost_iou < 1)) problem = "lost_iou must be in [0, 1)";
   else if (lost_frames < 1) problem = "lost_frames must be >= 1";
   else if (!(region_margin >= 0 && region_margin <= 10)) problem = "region_margin must be in [0, 10]";
@@ -726,6 +727,45 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   return out;
 }
 
+std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) const {
+  if (!legs_by_phase_ || !started_ || frames.size() < 2) return {};
+  Tracker back(model_, cameras_, options_, table_);
+  const int rate = state_model_->placement().rate;
+  const auto turn = [rate](double* s) { s[rate] = -s[rate]; };
+  back.filter_->Reset(filter_->particles());
+  back.filter_->Transform(turn);
+  back.shape_ = shape_;
+  back.ApplyBuild();
+  back.alignment_ = alignment_;
+  if (refiner_ && back.refiner_) back.refiner_->ContinueFrom(*refiner_);
+  back.started_ = true;
+  back.frames_since_start_ = frames_since_start_;
+  back.mirror_evidence_ = mirror_evidence_;
+  back.mirror_streak_ = mirror_streak_;
+  back.held_size_ = held_size_;
+  back.next_choice_ = next_choice_;
+  back.last_drawn_ = last_drawn_;
+  // Time runs on forwards for the second tracker: each frame's time and index mirrored
+  // about the last frame's.
+  const Frame& last = frames.back();
+  back.last_time_s_ = last_time_s_;
+  back.last_good_time_s_ = last_good_time_s_ > -1e8 ? last.time_s : last_good_time_s_;
+  std::vector<TrackedFrame> out;
+  for (size_t i = frames.size() - 1; i-- > 0;) {
+    Frame f = frames[i];
+    f.index = 2 * last.index - frames[i].index;
+    f.time_s = 2 * last.time_s - frames[i].time_s;
+    TrackedFrame estimate = back.Step(f);
+    if (estimate.status == TrackStatus::kLost) break;
+    estimate.index = frames[i].index;
+    estimate.time_s = frames[i].time_s;
+    turn(estimate.state.data());
+    out.push_back(std::move(estimate));
+  }
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
 bool Tracker::ExplainsBadly(const Eigen::VectorXd& estimate, const std::vector<CameraObservation>& observations) const {
   TrackedFrame probe;
   filter_->Score(estimate.data(), observations, &probe.cameras);
@@ -831,17 +871,63 @@ void RunSource(FrameSource* source, int start_frames, const std::function<void(c
   while (!stopped() && source->Next(&frame)) step(frame);
 }
 
+StartBackOver::StartBackOver(const Tracker* tracker)
+    : tracker_(tracker), armed_(tracker->options().start_backwards_s > 0) {}
+
+void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<Estimate>* ready) {
+  const bool lost = estimate.status == TrackStatus::kLost;
+  held_.push_back({frame, std::move(estimate)});
+  if (lost) {
+    // Lost before the start was gone over: the frames stand as tracked. The next start (a
+    // restart) is gone over in its turn.
+    armed_ = tracker_->options().start_backwards_s > 0;
+    return Flush(ready);
+  }
+  if (!armed_) return Flush(ready);
+  if (frame.time_s - held_.front().frame.time_s < tracker_->options().start_backwards_s) return;
+  std::vector<Frame> frames;
+  for (const Estimate& e : held_) frames.push_back(e.frame);
+  std::vector<TrackedFrame> back = tracker_->BackOver(frames);
+  // The frames before the last one, as far back as the second tracker went; each costs
+  // both passes.
+  const size_t from = held_.size() - 1 - back.size();
+  for (size_t i = 0; i < back.size(); ++i) {
+    TrackedFrame& forward = held_[from + i].estimate;
+    back[i].seconds += forward.seconds;
+    back[i].evaluations += forward.evaluations;
+    forward = std::move(back[i]);
+  }
+  armed_ = false;
+  Flush(ready);
+}
+
+void StartBackOver::Flush(std::vector<Estimate>* ready) {
+  for (Estimate& e : held_) ready->push_back(std::move(e));
+  held_.clear();
+}
+
 std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
                                       const std::function<void(const Frame&, TrackedFrame&)>& on_frame,
                                       const std::function<bool()>& stop) {
   std::vector<TrackedFrame> tracked;
+  StartBackOver hold(tracker);
+  std::vector<StartBackOver::Estimate> ready;
+  const auto give = [&] {
+    for (StartBackOver::Estimate& e : ready) {
+      tracked.push_back(std::move(e.estimate));
+      if (on_frame) on_frame(e.frame, tracked.back());
+    }
+    ready.clear();
+  };
   RunSource(
       source, tracker->options().start_frames, [tracker](const std::vector<Frame>& first) { tracker->StartFromFrames(first); },
       [&](const Frame& f) {
-        tracked.push_back(tracker->Step(f));
-        if (on_frame) on_frame(f, tracked.back());
+        hold.Add(f, tracker->Step(f), &ready);
+        give();
       },
       stop);
+  hold.Flush(&ready);  // the source ended before a start was gone over
+  give();
   return tracked;
 }
 

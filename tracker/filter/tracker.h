@@ -126,6 +126,14 @@ struct TrackerOptions {
                                   // --asf): size 1, neither estimated nor refined
   int threads = 1;
   int start_frames = 15;          // frames looked at to find the person and their heading
+  // Each start is gone over again backwards (TrackSource, BackOver): once the track has run
+  // this long from the start without a loss, a second tracker goes from its state there
+  // back to the start's first frame (each particle walking the other way), and its
+  // estimates replace the first pass's. A start reads where the person is from a few
+  // frames and is least sure at the first: in depth, with one camera, until the feet show
+  // (the occluded monocular clip's feet are behind a table for 20 frames: 190-520 mm off
+  // at frame 0). 0: never; a live camera's frames are not held back for it.
+  double start_backwards_s = 1.0;
   int start_particle_factor = 4;  // the first frame's first layer: annealing.particles times this
   int start_layers = 8;           // and its layers
   double lost_iou = 0.2;          // an estimate explaining less than this (mean IoU)...
@@ -285,6 +293,14 @@ class Tracker {
   bool StartFromFrames(const std::vector<Frame>& frames, bool at_last = false);
   // One frame.
   TrackedFrame Step(const Frame& frame);
+  // The frames before the last one stepped, tracked again from it backwards in time: a
+  // second tracker takes this one's particles (each walking the other way: a walk played
+  // backwards is a walk backwards), build, views' alignment and search offset, and steps
+  // `frames` (in time order, the last the one Step had last) from the last but one down to
+  // the first. Their estimates in time order, as far back as they stayed tracked (the
+  // first lost going back ends them); empty when the state space cannot be run backwards
+  // (only a manifold's cadence has a sign) or nothing is tracked. This tracker is unchanged.
+  std::vector<TrackedFrame> BackOver(const std::vector<Frame>& frames) const;
   // An estimate's silhouette (as Step drew it to score it) set in each camera's CV_8UC1
   // mask, the cameras' size (not cleared first); nothing for an estimate without a state.
   void DrawEstimate(const TrackedFrame& frame, std::vector<cv::Mat>* masks) const;
@@ -384,10 +400,35 @@ class Tracker {
 void RunSource(FrameSource* source, int start_frames, const std::function<void(const std::vector<Frame>&)>& start,
                const std::function<void(const Frame&)>& step, const std::function<bool()>& stop = {});
 
+// Holds each start's first frames' estimates until the start has been gone over
+// backwards (TrackerOptions::start_backwards_s, Tracker::BackOver), then gives them
+// replaced by the second pass's; every other frame at once. For TrackSource and any
+// caller that steps a tracker itself.
+class StartBackOver {
+ public:
+  struct Estimate {
+    Frame frame;
+    TrackedFrame estimate;
+  };
+  explicit StartBackOver(const Tracker* tracker);  // must outlive this
+  // A frame and the tracker's Step of it, in order: appends to `ready` the frames whose
+  // estimates are final now, in order.
+  void Add(const Frame& frame, TrackedFrame estimate, std::vector<Estimate>* ready);
+  // Whatever is held, as it is (the frames ended before the start was gone over).
+  void Flush(std::vector<Estimate>* ready);
+
+ private:
+  const Tracker* tracker_;
+  std::vector<Estimate> held_;  // since the start, not given yet
+  bool armed_;                  // the frames held are a start's, not gone over yet
+};
+
 // Tracks every frame of a source: the first options.start_frames frames are looked at to
-// start, then tracked like the rest. `on_frame` (may be empty) gets each frame with its
-// estimate as it ends (and may add to it, e.g. the latency); `stop` (may be empty) is asked before each frame is read and ends
-// the run early (Ctrl-C, a time limit).
+// start, then tracked like the rest, and each start's first start_backwards_s gone over
+// again backwards (Tracker::BackOver). `on_frame` (may be empty) gets each frame with its
+// final estimate (a start's frames once gone back over: up to start_backwards_s late) and
+// may add to it, e.g. the latency; `stop` (may be empty) is asked before each frame is
+// read and ends the run early (Ctrl-C, a time limit).
 std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,
                                       const std::function<void(const Frame&, TrackedFrame&)>& on_frame = {},
                                       const std::function<bool()>& stop = {});

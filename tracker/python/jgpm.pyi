@@ -102,7 +102,9 @@ class Tracker:
                  threads: int = 0, fps: float = 30.0, people: str = "one", max_people: int = 8) -> None: ...
     def step(self, masks: Optional[list[_Array]]) -> list[dict]:
         """One frame's masks (one per camera, H x W, nonzero = person) or None; the frames tracked by this call
-        (people='all': each {frame, time_s, people, born, ended})."""
-    def finish(self) -> list[dict]: ...
+        (people='all': each {frame, time_s, people, born, ended}). people='one': a start's frames are given a
+        second after it, once it has been gone over again backwards."""
+    def finish(self) -> list[dict]:
+        """The frames still held when the sequence ended (for the start, or for going back over it)."""
     @property
     def joint_names(self) -> list[str]: ...

@@ -283,6 +283,7 @@ struct PyTracker {
   double fps = 30;
   int start_frames = 0;
   std::vector<Frame> first;  // held for the start
+  std::optional<StartBackOver> hold;  // people='one': a start's frames until gone back over
   bool started = false;
   int next = 0;
 
@@ -309,6 +310,7 @@ struct PyTracker {
       multi = std::make_unique<MultiTracker>(*model, cameras, options, everyone, table);
     } else {
       tracker = std::make_unique<Tracker>(*model, cameras, options, table);
+      hold.emplace(tracker.get());
     }
   }
 
@@ -350,21 +352,30 @@ struct PyTracker {
       }
       out.append(PeopleDict(f));
     } else {
-      TrackedFrame f;
+      std::vector<StartBackOver::Estimate> ready;
       {
         py::gil_scoped_release release;
-        f = tracker->Step(frame);
+        hold->Add(frame, tracker->Step(frame), &ready);
       }
-      out.append(EstimateDict(f));
+      for (const StartBackOver::Estimate& e : ready) out.append(EstimateDict(e.estimate));
     }
     return out;
   }
-  // The frames still held for the start (a sequence shorter than start_frames), tracked.
-  py::list Finish() { return started || first.empty() ? py::list() : Start(); }
+  // The frames still held: for the start (a sequence shorter than start_frames), tracked;
+  // a start's not gone back over yet (shorter than start_backwards_s after it), as they are.
+  py::list Finish() {
+    py::list out = started || first.empty() ? py::list() : Start();
+    if (hold) {
+      std::vector<StartBackOver::Estimate> ready;
+      hold->Flush(&ready);
+      for (const StartBackOver::Estimate& e : ready) out.append(EstimateDict(e.estimate));
+    }
+    return out;
+  }
 
   py::list Start() {
     started = true;
-    std::vector<TrackedFrame> tracked;
+    std::vector<StartBackOver::Estimate> tracked;
     std::vector<PeopleFrame> everyone;
     {
       py::gil_scoped_release release;
@@ -377,12 +388,12 @@ struct PyTracker {
         }
       } else {
         tracker->StartFromFrames(first);
-        for (const Frame& f : first) tracked.push_back(tracker->Step(f));
+        for (const Frame& f : first) hold->Add(f, tracker->Step(f), &tracked);
       }
     }
     first.clear();
     py::list out;
-    for (const TrackedFrame& f : tracked) out.append(EstimateDict(f));
+    for (const StartBackOver::Estimate& e : tracked) out.append(EstimateDict(e.estimate));
     for (const PeopleFrame& f : everyone) out.append(PeopleDict(f));
     return out;
   }
@@ -677,9 +688,10 @@ PYBIND11_MODULE(jgpm, m) {
            "One frame: a list of masks, one per camera (height x width, nonzero: the person), or None for a frame "
            "not seen. Returns the frames tracked by this call, as dicts (frame, time_s, status, joints_mm: joints "
            "x 3 or None, root_mm, heading_deg, size, pose_deg, ess, seconds): none while the first 15 frames are "
-           "gathered (the start looks at them together), then those 15, then one per call.")
+           "gathered (the start looks at them together), then, people='one', none until a second more has been "
+           "tracked and the start gone over again backwards, then every frame so far, then one per call.")
       .def("finish", &PyTracker::Finish,
-           "The frames still held for the start when the sequence was shorter than it, tracked.")
+           "The frames still held when the sequence ended (for the start, or for going back over it).")
       .def_property_readonly("joint_names",
                              [](const PyTracker& self) { return self.model->skeleton().BoneNames(); });
 }

@@ -245,6 +245,8 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   const Prior prior = reading.get();
   const std::unique_ptr<GaitModel>& model = prior.model;
   const std::shared_ptr<const PoseTable>& table = prior.table;
+  // A live camera's estimates are given as they come, and a start from the truth is sure.
+  if ((video && video->live()) || o.truth_start) tracker_options.start_backwards_s = 0;
   Tracker tracker(*model, source->cameras(), tracker_options, table);
   TrackJobResult result;
   TrackRun& run = result.run;

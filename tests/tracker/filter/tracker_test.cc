@@ -1056,5 +1056,93 @@ TEST(Tracker, AStartTriesEachCamerasReadingOfThePlace) {
   EXPECT_LT(placed, 100);
 }
 
+// Going back over a start (Tracker::BackOver): a second tracker from this one's state at
+// the last frame, back to the first, on exact masks of the shared clip. Its estimates
+// follow the truth at every frame going back, and this tracker goes on as if it had not
+// been asked (its next estimates equal a twin's that never went back).
+TEST(Tracker, GoingBackOverFramesFollowsTheWalkAndChangesNothing) {
+  const Fixture& f = Shared();
+  std::vector<Frame> frames;
+  for (int k = 0; k < kFrames; ++k) frames.push_back(ClipFrameAt(f.truth, f.clip, k));
+  const int back_from = 15;
+  const auto tracker = SharedTracker(100, 4), twin = SharedTracker(100, 4);
+  const std::vector<Frame> first(frames.begin(), frames.begin() + 5);
+  ASSERT_TRUE(tracker->StartFromFrames(first) && twin->StartFromFrames(first));
+  for (int k = 0; k <= back_from; ++k) tracker->Step(frames[k]), twin->Step(frames[k]);
+  const std::vector<TrackedFrame> back = tracker->BackOver({frames.begin(), frames.begin() + back_from + 1});
+  ASSERT_EQ(back.size(), static_cast<size_t>(back_from));
+  double worst = 0;
+  for (int k = 0; k < back_from; ++k) {
+    ASSERT_EQ(back[k].index, k);
+    const Eigen::Vector3d d = back[k].joints_mm.col(0) - f.truth.frames[k].joints_mm.col(0);
+    worst = std::max(worst, std::hypot(d.x(), d.z()));
+    EXPECT_GT(back[k].state[tracker->state_model().placement().rate], 0) << k;  // walking forwards, as tracked
+  }
+  std::printf("going back over %d frames: the root at most %.0f mm off\n", back_from, worst);
+  EXPECT_LT(worst, kRootBoundMm + 40);
+  for (int k = back_from + 1; k < kFrames; ++k) {
+    const TrackedFrame a = tracker->Step(frames[k]), b = twin->Step(frames[k]);
+    EXPECT_EQ(a.joints_mm, b.joints_mm) << k;
+  }
+}
+
+// A start sure only later: one camera at head height, the walker's legs hidden (painted)
+// for the first 16 frames, so their first places are read from the head alone, which from
+// that height hardly tells depth. Gone back over from the last frame (feet seen for 9
+// frames), the first frame's place is nearer the truth than the forward pass's.
+TEST(Tracker, GoingBackOverAStartPlacesItsFirstFramesFromLaterOnes) {
+  const Fixture& f = Shared();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const ClipFrame& t : f.truth.frames) centre += t.joints_mm.col(0) / f.truth.frames.size();
+  // 4.5 m from the walk, at right angles to it, as the suite's monocular clip.
+  const Eigen::Vector3d walk = f.truth.frames.back().joints_mm.col(0) - f.truth.frames.front().joints_mm.col(0);
+  const Eigen::Vector3d aside = Eigen::Vector3d(walk.z(), 0, -walk.x()).normalized() * 4500;
+  const Camera level = LookAtCamera("cam0", 320, 240, 260, {centre.x() + aside.x(), 1500, centre.z() + aside.z()},
+                                    {centre.x(), 1000, centre.z()});
+  test::TempDir dir;
+  {
+    const Walk0701 walk;
+    ClipOptions clip;
+    clip.max_frames = kFrames;
+    clip.contact_sheet = false;
+    RenderClip(walk.skeleton, walk.motion, walk.source, {level}, clip, (dir.path() / "clip").string());
+  }
+  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
+  std::vector<Frame> frames;
+  for (int k = 0; k < kFrames; ++k) {
+    frames.push_back(ClipFrameAt(truth, dir.path() / "clip", k));
+    if (k > 15) continue;
+    cv::Mat& mask = frames.back().masks[0];
+    const cv::Rect box = cv::boundingRect(mask);
+    frames.back().hidden.push_back(HideFrom(&mask, box.y + box.height * 3 / 4));  // the shins and below
+  }
+  const auto root_error = [&](const TrackedFrame& estimate) {
+    const Eigen::Vector3d d = estimate.joints_mm.col(0) - truth.frames[estimate.index].joints_mm.col(0);
+    return std::hypot(d.x(), d.z());
+  };
+  double forward = 0, backward = 0;
+  const int seeds = 4;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    TrackerOptions options;
+    options.annealing.particles = 100;
+    options.annealing.seed = seed;
+    Tracker tracker(*f.loaded, truth.cameras, options);
+    ASSERT_TRUE(tracker.StartFromFrames({frames.begin(), frames.begin() + 15}));
+    TrackedFrame at_first;
+    for (const Frame& frame : frames) {
+      TrackedFrame out = tracker.Step(frame);
+      if (frame.index == 0) at_first = std::move(out);
+    }
+    const std::vector<TrackedFrame> back = tracker.BackOver(frames);
+    ASSERT_EQ(back.size(), frames.size() - 1) << seed;
+    std::printf("seed %d: the first frame's root %.0f mm off forwards, %.0f gone back over\n", seed,
+                root_error(at_first), root_error(back.front()));
+    forward += root_error(at_first) / seeds;
+    backward += root_error(back.front()) / seeds;
+  }
+  std::printf("mean %.0f mm forwards, %.0f gone back over\n", forward, backward);
+  EXPECT_LT(backward, 0.6 * forward);
+}
+
 }  // namespace
 }  // namespace jgpm
