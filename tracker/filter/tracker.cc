@@ -729,7 +729,12 @@ TrackedFrame Tracker::Step(const Frame& frame) {
 
 std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) const {
   if (!legs_by_phase_ || !started_ || frames.size() < 2) return {};
-  Tracker back(model_, cameras_, options_, table_);
+  // The second pass starts from particles that have found the person: it searches with
+  // half the layers. On the tuning clips the same (94.2 mm either way, 4 seeds), and a
+  // start's second costs 1.19x its first pass on `07_01-4cam` instead of 1.30x.
+  TrackerOptions back_options = options_;
+  back_options.annealing.layers = std::max(1, options_.annealing.layers / 2);
+  Tracker back(model_, cameras_, back_options, table_);
   const int rate = state_model_->placement().rate;
   const auto turn = [rate](double* s) { s[rate] = -s[rate]; };
   back.filter_->Reset(filter_->particles());

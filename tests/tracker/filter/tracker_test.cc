@@ -452,21 +452,31 @@ TEST(Tracker, APersonBehindOthersTrackedWithThemIsPredictedNotLost) {
 // the start reads the thighs' cut as the feet and places the walker 523 mm away, and the
 // track stays 450-560 mm off while they are hidden. (From the default ring's cameras, near
 // a head's height, an adult's height places nobody well: 3.9 m off; 6.5 m not told.)
-TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
+// The shared clip's walk: its root's mean place.
+Eigen::Vector3d WalkCentre() {
   const Fixture& f = Shared();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const ClipFrame& t : f.truth.frames) centre += t.joints_mm.col(0) / f.truth.frames.size();
+  return centre;
+}
+
+// The test walk's kFrames frames rendered through one camera into `dir`/clip; its truth.
+ClipGroundTruth RenderThrough(const Camera& camera, const fs::path& dir) {
+  const Walk0701 walk;
+  ClipOptions clip;
+  clip.max_frames = kFrames;
+  clip.contact_sheet = false;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {camera}, clip, (dir / "clip").string());
+  return ReadGroundTruth(dir / "clip" / "ground_truth.json");
+}
+
+TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
+  const Fixture& f = Shared();
+  const Eigen::Vector3d centre = WalkCentre();
   const Camera above = LookAtCamera("cam0", 320, 240, 500, {centre.x(), 6000, centre.z() - 9000},
                                     {centre.x(), 900, centre.z()});
   test::TempDir dir;
-  {
-    const Walk0701 walk;
-    ClipOptions clip;
-    clip.max_frames = kFrames;
-    clip.contact_sheet = false;
-    RenderClip(walk.skeleton, walk.motion, walk.source, {above}, clip, (dir.path() / "clip").string());
-  }
-  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
+  const ClipGroundTruth truth = RenderThrough(above, dir.path());
   const auto run = [&](bool told, std::vector<double>* size) {
     TrackerOptions options;
     options.annealing.particles = 100;
@@ -1092,22 +1102,14 @@ TEST(Tracker, GoingBackOverFramesFollowsTheWalkAndChangesNothing) {
 // frames), the first frame's place is nearer the truth than the forward pass's.
 TEST(Tracker, GoingBackOverAStartPlacesItsFirstFramesFromLaterOnes) {
   const Fixture& f = Shared();
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (const ClipFrame& t : f.truth.frames) centre += t.joints_mm.col(0) / f.truth.frames.size();
+  const Eigen::Vector3d centre = WalkCentre();
   // 4.5 m from the walk, at right angles to it, as the suite's monocular clip.
   const Eigen::Vector3d walk = f.truth.frames.back().joints_mm.col(0) - f.truth.frames.front().joints_mm.col(0);
   const Eigen::Vector3d aside = Eigen::Vector3d(walk.z(), 0, -walk.x()).normalized() * 4500;
   const Camera level = LookAtCamera("cam0", 320, 240, 260, {centre.x() + aside.x(), 1500, centre.z() + aside.z()},
                                     {centre.x(), 1000, centre.z()});
   test::TempDir dir;
-  {
-    const Walk0701 walk;
-    ClipOptions clip;
-    clip.max_frames = kFrames;
-    clip.contact_sheet = false;
-    RenderClip(walk.skeleton, walk.motion, walk.source, {level}, clip, (dir.path() / "clip").string());
-  }
-  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
+  const ClipGroundTruth truth = RenderThrough(level, dir.path());
   std::vector<Frame> frames;
   for (int k = 0; k < kFrames; ++k) {
     frames.push_back(ClipFrameAt(truth, dir.path() / "clip", k));
