@@ -62,6 +62,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (start_particle_factor < 1 || start_particle_factor > 100) problem = "start_particle_factor must be in [1, 100]";
   else if (start_layers < 1 || start_layers > 100) problem = "start_layers must be in [1, 100]";
   else if (!(start_backwards_s >= 0)) problem = "start_backwards_s must be >= 0 (0: never)";
+  else if (!(back_over_margin >= 0)) problem = "back_over_margin must be >= 0";
   else if (!(lost_iou >= 0 && lost_iou < 1)) problem = "lost_iou must be in [0, 1)";
   else if (lost_frames < 1) problem = "lost_frames must be >= 1";
   else if (!(region_margin >= 0 && region_margin <= 10)) problem = "region_margin must be in [0, 10]";
@@ -893,17 +894,32 @@ void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<E
   std::vector<Frame> frames;
   for (const Estimate& e : held_) frames.push_back(e.frame);
   std::vector<TrackedFrame> back = tracker_->BackOver(frames);
-  // The frames before the last one, as far back as the second tracker went; each costs
-  // both passes.
+  // The frames before the last one, as far back as the second tracker went. The second
+  // pass is kept unless it explains their masks worse (TrackerOptions::back_over_margin):
+  // a track gone wrong by the frame it goes back from (legs swapped) carries that back.
   const size_t from = held_.size() - 1 - back.size();
+  std::vector<TrackedFrame> first;
+  for (size_t i = from; i + 1 < held_.size(); ++i) first.push_back(held_[i].estimate);
+  const bool keep = KeepSecond(first, back, tracker_->options().back_over_margin);
   for (size_t i = 0; i < back.size(); ++i) {
     TrackedFrame& forward = held_[from + i].estimate;
-    back[i].seconds += forward.seconds;
-    back[i].evaluations += forward.evaluations;
-    forward = std::move(back[i]);
+    // Each frame costs both passes, whichever is kept.
+    const double seconds = forward.seconds + back[i].seconds;
+    const int evaluations = forward.evaluations + back[i].evaluations;
+    if (keep) forward = std::move(back[i]);
+    forward.seconds = seconds;
+    forward.evaluations = evaluations;
   }
   armed_ = false;
   Flush(ready);
+}
+
+bool StartBackOver::KeepSecond(const std::vector<TrackedFrame>& first, const std::vector<TrackedFrame>& second,
+                               double margin) {
+  if (first.size() != second.size() || first.empty()) return false;
+  double first_iou = 0, second_iou = 0;
+  for (size_t i = 0; i < first.size(); ++i) first_iou += first[i].MeanIou(), second_iou += second[i].MeanIou();
+  return second_iou >= first_iou - margin * static_cast<double>(first.size());
 }
 
 void StartBackOver::Flush(std::vector<Estimate>* ready) {
