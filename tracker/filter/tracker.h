@@ -141,9 +141,9 @@ struct TrackerOptions {
   // carries that back (held-out 07_06-2cam, seed 2: legs swapped at frame 30, so 300 mm off
   // over frames 3-29 going back; mean IoU 0.767 against 0.818). Chosen on the realism
   // tuning clips (4 seeds, bodytrack 14 mean absolute mm): 0 gives 94.9 (an occluded walk
-  // 69.6 -> 73.8, its second pass right and 0.004 lower), 0.02 keeps every figure as
-  // without the check (94.2). The occluded monocular clip's second passes are within
-  // 0.008 of the first.
+  // 69.6 -> 73.8, its second pass better yet lower by under 0.02), 0.02 keeps every
+  // figure as without the check (94.2). The occluded monocular clip's second passes were
+  // within 0.01 of the first (seeds 1-4).
   double back_over_margin = 0.02;
   int start_particle_factor = 4;  // the first frame's first layer: annealing.particles times this
   int start_layers = 8;           // and its layers
