@@ -593,7 +593,11 @@ TEST(TrackCli, ALiveCameraIsTrackedUntilItGoesAwayOrCtrlC) {
 }
 
 // `jgpm capture`: images of a live camera at the interval asked; each is one of the
-// camera's frames (the oracle: the video the software camera plays), 6 frames apart.
+// camera's frames (the oracle: the video the software camera plays), 6 frames apart at
+// the soonest. A live camera drops the frames a slow reader misses, so a shot may come
+// a few frames later: under the sanitizers, with the other tests on both cores, one came
+// 9 frames after the one before (CI, 3 Dec). Never sooner than asked, and not as late as
+// twice the interval.
 TEST(TrackCli, CaptureSavesACamerasFramesAtTheIntervalAsked) {
   const fs::path video = Shared().clip / "cam0.avi";
   test::TempDir dir;
@@ -621,7 +625,7 @@ TEST(TrackCli, CaptureSavesACamerasFramesAtTheIntervalAsked) {
   }
   for (int k = 1; k < 3; ++k) {
     EXPECT_GE(matched[k] - matched[k - 1], 5) << matched[k - 1] << " -> " << matched[k];
-    EXPECT_LE(matched[k] - matched[k - 1], 7) << matched[k - 1] << " -> " << matched[k];
+    EXPECT_LT(matched[k] - matched[k - 1], 12) << matched[k - 1] << " -> " << matched[k];
   }
 }
 
