@@ -353,6 +353,9 @@ void RunBench(BenchArguments a) {
 }  // namespace
 
 // Shared by `track` and `bench track`.
+constexpr const char* kNoBackOverHelp =
+    "do not go back over each start (its first second tracked again backwards once the track is sure: "
+    "Tracker::BackOver); its frames then cost one pass and are given out as they come";
 constexpr const char* kAdaptHelp =
     "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
     "a state under the training subjects' posture prior (measured no better on the suite)";
@@ -476,7 +479,7 @@ void AddTrackCommands(CLI::App& app) {
       ->capture_default_str();
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
   track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
-  track->add_flag("--no-back-over", a->no_back_over, "do not go back over each start (its first second tracked again backwards once the track is sure: Tracker::BackOver); its frames then cost one pass and are given out as they come");
+  track->add_flag("--no-back-over", a->no_back_over, kNoBackOverHelp);
   track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
@@ -522,7 +525,7 @@ void AddTrackBench(CLI::App* bench) {
       ->capture_default_str();
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
-  track_bench->add_flag("--no-back-over", b->no_back_over, "do not go back over each start (its first second tracked again backwards once the track is sure: Tracker::BackOver); its frames then cost one pass and are given out as they come");
+  track_bench->add_flag("--no-back-over", b->no_back_over, kNoBackOverHelp);
   track_bench->callback([b] { RunBench(*b); });
 }
 

@@ -310,8 +310,9 @@ class Tracker {
   // backwards is a walk backwards), build, views' alignment and search offset, and steps
   // `frames` (in time order, the last the one Step had last) from the last but one down to
   // the first, with half the annealing layers. Their estimates in time order, as far back
-  // as they stayed tracked (the first lost going back ends them); empty when the state space cannot be run backwards
-  // (only a manifold's cadence has a sign) or nothing is tracked. This tracker is unchanged.
+  // as they stayed tracked (the first lost going back ends them); empty when the state
+  // space cannot be run backwards (only a manifold's cadence has a sign) or nothing is
+  // tracked. This tracker is unchanged.
   std::vector<TrackedFrame> BackOver(const std::vector<Frame>& frames) const;
   // An estimate's silhouette (as Step drew it to score it) set in each camera's CV_8UC1
   // mask, the cameras' size (not cleared first); nothing for an estimate without a state.
