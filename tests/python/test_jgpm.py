@@ -361,10 +361,11 @@ class TrackerTest(Fixture):
             got = tracker.step(masks)
             self.assertEqual(len(got), 0 if k < given_at else given_at + 1 if k == given_at else 1)
             frames += got
-            for f in got:  # people confirmed now: their estimates in frames returned before
+            for f in got:  # estimates of frames returned before, new or in place of the person's there
                 for q in f.get("earlier", []):
                     at = next(e for e in frames if e["frame"] == q["frame"])
-                    at["people"] = sorted(at["people"] + [q], key=lambda p: p["id"])
+                    others = [p for p in at["people"] if p["id"] != q["id"]]
+                    at["people"] = sorted(others + [q], key=lambda p: p["id"])
                     if q["id"] in f["born"]:
                         f["born"].remove(q["id"])
                         at["born"].append(q["id"])
@@ -398,7 +399,7 @@ class TrackerTest(Fixture):
     def test_stepping_people_all_gives_the_commands_people(self):
         clip, out = self.dir / "two_clip", self.dir / "two_people"
         amc = self.data / "subjects" / "07" / "07_01.amc"
-        run_jgpm("render", "--amc", amc, "--amc", amc, "--walk", "0,0,0,0", "--walk", "0,2000,0,0", "--max-frames", 24,
+        run_jgpm("render", "--amc", amc, "--amc", amc, "--walk", "0,0,0,0", "--walk", "0,2000,0,0", "--max-frames", 40,
                  "--body-seed", 3, "--no-contact-sheet", "--out", clip)
         run_jgpm("track", "--model", self.models["jgpm"], "--clip", clip, "--seed", 2, "--no-overlay", "--people", "all",
                  "--out", out)

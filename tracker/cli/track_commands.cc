@@ -354,8 +354,9 @@ void RunBench(BenchArguments a) {
 
 // Shared by `track` and `bench track`.
 constexpr const char* kNoBackOverHelp =
-    "do not go back over each start (its first second tracked again backwards once the track is sure: "
-    "Tracker::BackOver); its frames then cost one pass and are given out as they come";
+    "do not go back over each start, or with --people all each birth (its first second tracked again "
+    "backwards once the track is sure: Tracker::BackOver); its frames then cost one pass and are given out as "
+    "they come";
 constexpr const char* kAdaptHelp =
     "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
     "a state under the training subjects' posture prior (measured no better on the suite)";

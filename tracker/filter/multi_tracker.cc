@@ -56,6 +56,13 @@ struct MultiTracker::Person {
   bool confirmed = false;
   bool reported = false;  // in a frame's people already
   std::vector<std::pair<int, TrackedFrame>> unreported;  // estimates before confirmation
+  // The birth's start until gone back over (GoBackOver): the frames as the person saw them
+  // and the first pass's estimates; then the second pass's, to be given (frame index,
+  // estimate).
+  bool going_back = false;
+  std::vector<Frame> held_frames;
+  std::vector<TrackedFrame> held_estimates;
+  std::vector<std::pair<int, TrackedFrame>> revised;
 };
 
 MultiTracker::MultiTracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& tracker,
@@ -275,9 +282,39 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   p->tracker = std::make_unique<Tracker>(model_, cameras_, options, table_);
   if (!p->tracker->StartFromFrames(frames, past)) return false;
   p->first_frame = first_frame;
+  p->going_back = tracker_options_.start_backwards_s > 0;
   ++next_id_;
   people_.push_back(std::move(p));
   return true;
+}
+
+void MultiTracker::GoBackOver(Person* p, const Frame& mine) const {
+  if (!p->going_back) return;
+  if (p->last.status == TrackStatus::kLost) {  // the frames stand as tracked
+    p->going_back = false;
+    p->held_frames.clear();
+    p->held_estimates.clear();
+    return;
+  }
+  p->held_frames.push_back(mine);
+  p->held_estimates.push_back(p->last);
+  if (mine.time_s - p->held_frames.front().time_s < tracker_options_.start_backwards_s) return;
+  std::vector<TrackedFrame> back = p->tracker->BackOver(p->held_frames);
+  // The frames before the last one, as far back as the second pass went; kept unless it
+  // explains their masks worse (as StartBackOver).
+  const size_t from = p->held_estimates.size() - 1 - back.size();
+  const std::vector<TrackedFrame> first(p->held_estimates.begin() + static_cast<std::ptrdiff_t>(from),
+                                        p->held_estimates.end() - 1);
+  if (StartBackOver::KeepSecond(first, back, tracker_options_.back_over_margin)) {
+    for (size_t i = 0; i < back.size(); ++i) {
+      back[i].seconds += first[i].seconds;  // each frame costs both passes
+      back[i].evaluations += first[i].evaluations;
+      p->revised.emplace_back(back[i].index, std::move(back[i]));
+    }
+  }
+  p->going_back = false;
+  p->held_frames.clear();
+  p->held_estimates.clear();
 }
 
 void MultiTracker::Start(const std::vector<Frame>& frames) {
@@ -326,6 +363,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     p->confirmed = p->confirmed || p->good >= options_.confirm_frames;
     p->drawn.assign(cameras_.size(), cv::Mat());
     p->tracker->DrawEstimate(p->last, &p->drawn);
+    GoBackOver(p, mine);
   }
   // Deaths: lost too long, unseen too long while nobody hides them, or one person followed
   // twice. Runs add up frame intervals (the first frame counts as one at 30 frames/s), and
@@ -374,6 +412,12 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   for (const auto& p : people_) {
     if (p->first_frame > frame.index) continue;
     if (!p->confirmed) {
+      for (auto& [index, estimate] : p->revised) {
+        const int at = index;  // (clang 14 cannot capture a structured binding)
+        const auto held = std::find_if(p->unreported.begin(), p->unreported.end(), [&](const auto& u) { return u.first == at; });
+        if (held != p->unreported.end()) held->second = std::move(estimate);
+      }
+      p->revised.clear();
       p->unreported.emplace_back(frame.index, p->last);
       continue;
     }
@@ -383,6 +427,8 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
       for (auto& [index, estimate] : p->unreported) out.earlier.push_back({index, {p->id, std::move(estimate)}});
       p->unreported.clear();
     }
+    for (auto& [index, estimate] : p->revised) out.earlier.push_back({index, {p->id, std::move(estimate)}});
+    p->revised.clear();
     p->reported = true;
   }
   // Births, from what nobody explains (frames Start looked at are not looked at again).
@@ -413,9 +459,13 @@ void PlaceEarlier(std::vector<PeopleFrame>* frames) {
     const auto at = std::find_if(frames->rbegin(), frames->rend(), [&](const PeopleFrame& t) { return t.index == index; });
     if (at == frames->rend()) continue;
     if (std::erase(now.born, person.id) > 0) at->born.push_back(person.id);  // the first comes first
-    at->people.insert(std::upper_bound(at->people.begin(), at->people.end(), person.id,
-                                       [](int id, const PersonFrame& p) { return id < p.id; }),
-                      person);
+    const auto place = std::lower_bound(at->people.begin(), at->people.end(), person.id,
+                                        [](const PersonFrame& p, int id) { return p.id < id; });
+    if (place != at->people.end() && place->id == person.id) {
+      *place = person;
+    } else {
+      at->people.insert(place, person);
+    }
   }
 }
 

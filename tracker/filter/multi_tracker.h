@@ -49,6 +49,13 @@
 // duplicate_same_way_s walking the same way, are one person followed twice
 // (two bodies do not stand in one place): the one born later ends.
 //
+// A birth's start is gone over backwards, as a single tracker's is (tracker.h,
+// TrackerOptions::start_backwards_s): start_backwards_s after the first frame a person was
+// stepped in, their tracker goes back over those frames as the person saw them (the
+// others' drawings hidden), and the second pass's estimates replace the first's where
+// they explain the masks as well (back_over_margin); they are given in that frame's
+// `earlier`. Only the birth's start: a person lost before then stays as tracked.
+//
 // Identities are the trackers': each follows its own person by its own dynamics (place,
 // heading, speed, gait phase) and build, and looks again for them only near where those put
 // them.
@@ -120,12 +127,14 @@ struct PeopleFrame {
   std::vector<int> born;            // ids in their first frame reported
   std::vector<int> ended;           // ids that ended at this frame (not in `people`)
   double seconds = 0;               // wall time of the frame's tracking, everyone's
-  // People confirmed at this frame (in `born`): their estimates in the frames before, from
-  // the first they were stepped in, which were not reported then (frame index, estimate).
-  // A live consumer shows people once confirmed; a recording's output (TrackPeople)
-  // puts these in their frames, so that a track begins where the person was first
-  // followed, not confirm_frames later (at the start of a clip every walker's first 2
-  // frames: 6 of the 3-walker crossing's 18.5 misses a run).
+  // Estimates of frames before this one (frame index, estimate), each new or replacing
+  // the person's estimate given for that frame before: the frames before a person's
+  // confirmation (in `born`), from the first they were stepped in, which were not reported
+  // then; and a birth's first start_backwards_s gone back over. A live consumer shows
+  // people once confirmed; a recording's output (TrackPeople) puts these in their frames,
+  // so that a track begins where the person was first followed, not confirm_frames later
+  // (at the start of a clip every walker's first 2 frames: 6 of the 3-walker crossing's
+  // 18.5 misses a run).
   std::vector<std::pair<int, PersonFrame>> earlier;
 };
 
@@ -191,6 +200,10 @@ class MultiTracker {
   bool Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks) const;
   // Whether at least half of the person's drawing is under others' in some camera.
   bool Behind(const Person& p) const;
+  // Holds the frame the person was just stepped in (`mine`, as they saw it) while their
+  // birth's start is not gone back over; once start_backwards_s has passed, goes back over
+  // it (Tracker::BackOver) and keeps the second pass's estimates in p->revised.
+  void GoBackOver(Person* p, const Frame& mine) const;
 
   const GaitModel& model_;
   std::vector<Camera> cameras_;
@@ -209,8 +222,9 @@ class MultiTracker {
   bool stepped_ = false;
 };
 
-// Puts the last frame's `earlier` estimates into the frames before it in `frames`, each
-// person born at the first of them instead of at the last frame.
+// Puts the last frame's `earlier` estimates into the frames before it in `frames` (in
+// place of the person's estimate there, if any), each person born at the first of them
+// instead of at the last frame.
 void PlaceEarlier(std::vector<PeopleFrame>* frames);
 
 // Tracks every frame of a source: the first start_frames are looked at to start everyone

@@ -261,7 +261,7 @@ py::dict PeopleDict(const PeopleFrame& f) {
     d["id"] = p.id;
     everyone.append(d);
   }
-  py::list earlier;  // people confirmed now: their estimates in frames already returned
+  py::list earlier;  // estimates of frames already returned, new or in place of the person's there
   for (const auto& [index, p] : f.earlier) {
     py::dict d = EstimateDict(p.frame);
     d["id"] = p.id;
@@ -682,8 +682,10 @@ PYBIND11_MODULE(jgpm, m) {
            "As `jgpm track` with its defaults (threads 0: all cores; the same seed gives the same poses for any "
            "thread count). The model's pose table is read from beside its file, or built and kept there. "
            "people='all' (--people all, at most max_people at once): each frame is {frame, time_s, people, born, "
-           "ended, earlier}, each person an estimate with its id; earlier: the people born (confirmed) now, their "
-           "estimates in frames returned before (each with its frame), which jgpm track puts in those frames.")
+           "ended, earlier}, each person an estimate with its id; earlier: estimates of frames returned before (each "
+           "with its frame), new or in place of the person's estimate there, which jgpm track puts in those "
+           "frames: the people born (confirmed) now, from the first frame they were followed in, and a birth's "
+           "first second gone back over.")
       .def("step", &PyTracker::Step, py::arg("masks"),
            "One frame: a list of masks, one per camera (height x width, nonzero: the person), or None for a frame "
            "not seen. Returns the frames tracked by this call, as dicts (frame, time_s, status, joints_mm: joints "

@@ -347,17 +347,25 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
         o.show(overlays->AddPeople(frame, people, body_of, true));
         return;
       }
-      // Written birth_window frames late, so that a person confirmed now is drawn in the
-      // frames they were followed in before (PeopleFrame::earlier), as poses.json has them.
+      // Written birth_window frames and start_backwards_s late, so that a person confirmed
+      // now is drawn in the frames they were followed in before, and a birth's start as
+      // gone back over (PeopleFrame::earlier), as poses.json has them.
       for (const auto& [index, person] : f.earlier) {
         const int wanted = index;  // (clang 14 cannot capture a structured binding)
         const auto at = std::find_if(held.begin(), held.end(), [&](const HeldFrame& h) { return h.frame.index == wanted; });
         if (at == held.end()) continue;
-        at->people.emplace_back(person.id, person.frame);
+        const auto same = std::find_if(at->people.begin(), at->people.end(), [&](const auto& p) { return p.first == person.id; });
+        if (same != at->people.end()) {
+          same->second = person.frame;
+        } else {
+          at->people.emplace_back(person.id, person.frame);
+        }
         std::sort(at->people.begin(), at->people.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       }
       held.push_back({frame, std::move(people)});
-      if (held.size() > static_cast<size_t>(o.multi.birth_window)) write_held();
+      while (held.size() > static_cast<size_t>(o.multi.birth_window) &&
+             frame.time_s - held.front().frame.time_s >= multi->tracker_options().start_backwards_s)
+        write_held();
     };
     result.people = TrackPeople(frames, &*multi, on_people, stop);
     while (!held.empty()) write_held();
