@@ -351,10 +351,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
       // now is drawn in the frames they were followed in before, and a birth's start as
       // gone back over (PeopleFrame::earlier), as poses.json has them.
       for (const auto& [index, person] : f.earlier) {
-        const int wanted = index;  // (clang 14 cannot capture a structured binding)
+        const int wanted = index, id = person.id;  // (clang 14 cannot capture a structured binding)
         const auto at = std::find_if(held.begin(), held.end(), [&](const HeldFrame& h) { return h.frame.index == wanted; });
         if (at == held.end()) continue;
-        const auto same = std::find_if(at->people.begin(), at->people.end(), [&](const auto& p) { return p.first == person.id; });
+        const auto same = std::find_if(at->people.begin(), at->people.end(), [&](const auto& p) { return p.first == id; });
         if (same != at->people.end()) {
           same->second = person.frame;
         } else {
