@@ -299,19 +299,9 @@ void MultiTracker::GoBackOver(Person* p, const Frame& mine) const {
   p->held_frames.push_back(mine);
   p->held_estimates.push_back(p->last);
   if (mine.time_s - p->held_frames.front().time_s < tracker_options_.start_backwards_s) return;
-  std::vector<TrackedFrame> back = p->tracker->BackOver(p->held_frames);
-  // The frames before the last one, as far back as the second pass went; kept unless it
-  // explains their masks worse (as StartBackOver).
-  const size_t from = p->held_estimates.size() - 1 - back.size();
-  const std::vector<TrackedFrame> first(p->held_estimates.begin() + static_cast<std::ptrdiff_t>(from),
-                                        p->held_estimates.end() - 1);
-  if (StartBackOver::KeepSecond(first, back, tracker_options_.back_over_margin)) {
-    for (size_t i = 0; i < back.size(); ++i) {
-      back[i].seconds += first[i].seconds;  // each frame costs both passes
-      back[i].evaluations += first[i].evaluations;
-      p->revised.emplace_back(back[i].index, std::move(back[i]));
-    }
-  }
+  StartBackOver::SecondPass back = StartBackOver::GoBack(*p->tracker, p->held_frames, p->held_estimates);
+  if (back.kept)
+    for (TrackedFrame& e : back.estimates) p->revised.emplace_back(e.index, std::move(e));
   p->going_back = false;
   p->held_frames.clear();
   p->held_estimates.clear();

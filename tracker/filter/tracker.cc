@@ -892,26 +892,38 @@ void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<E
   if (!armed_) return Flush(ready);
   if (frame.time_s - held_.front().frame.time_s < tracker_->options().start_backwards_s) return;
   std::vector<Frame> frames;
-  for (const Estimate& e : held_) frames.push_back(e.frame);
-  std::vector<TrackedFrame> back = tracker_->BackOver(frames);
-  // The frames before the last one, as far back as the second tracker went. The second
-  // pass is kept unless it explains their masks worse (TrackerOptions::back_over_margin):
-  // a track gone wrong by the frame it goes back from (legs swapped) carries that back.
-  const size_t from = held_.size() - 1 - back.size();
   std::vector<TrackedFrame> first;
-  for (size_t i = from; i + 1 < held_.size(); ++i) first.push_back(held_[i].estimate);
-  const bool keep = KeepSecond(first, back, tracker_->options().back_over_margin);
-  for (size_t i = 0; i < back.size(); ++i) {
+  for (const Estimate& e : held_) frames.push_back(e.frame), first.push_back(e.estimate);
+  SecondPass back = GoBack(*tracker_, frames, first);
+  const size_t from = held_.size() - 1 - back.estimates.size();
+  for (size_t i = 0; i < back.estimates.size(); ++i) {
     TrackedFrame& forward = held_[from + i].estimate;
-    // Each frame costs both passes, whichever is kept.
-    const double seconds = forward.seconds + back[i].seconds;
-    const int evaluations = forward.evaluations + back[i].evaluations;
-    if (keep) forward = std::move(back[i]);
-    forward.seconds = seconds;
-    forward.evaluations = evaluations;
+    if (back.kept) {
+      forward = std::move(back.estimates[i]);
+    } else {  // each frame costs both passes, whichever is kept
+      forward.seconds = back.estimates[i].seconds;
+      forward.evaluations = back.estimates[i].evaluations;
+    }
   }
   armed_ = false;
   Flush(ready);
+}
+
+StartBackOver::SecondPass StartBackOver::GoBack(const Tracker& tracker, const std::vector<Frame>& frames,
+                                                const std::vector<TrackedFrame>& first) {
+  SecondPass back;
+  back.estimates = tracker.BackOver(frames);
+  // The frames before the last one, as far back as the second tracker went. The second
+  // pass is kept unless it explains their masks worse (TrackerOptions::back_over_margin):
+  // a track gone wrong by the frame it goes back from (legs swapped) carries that back.
+  const size_t from = first.size() - 1 - back.estimates.size();
+  const std::vector<TrackedFrame> forward(first.begin() + static_cast<std::ptrdiff_t>(from), first.end() - 1);
+  back.kept = KeepSecond(forward, back.estimates, tracker.options().back_over_margin);
+  for (size_t i = 0; i < back.estimates.size(); ++i) {
+    back.estimates[i].seconds += forward[i].seconds;
+    back.estimates[i].evaluations += forward[i].evaluations;
+  }
+  return back;
 }
 
 bool StartBackOver::KeepSecond(const std::vector<TrackedFrame>& first, const std::vector<TrackedFrame>& second,

@@ -434,6 +434,16 @@ class StartBackOver {
   // (TrackerOptions::back_over_margin). False for no frames.
   static bool KeepSecond(const std::vector<TrackedFrame>& first, const std::vector<TrackedFrame>& second,
                          double margin);
+  // A start's frames gone back over (Tracker::BackOver of `frames`; `first` the first
+  // pass's estimates of them): the second pass's estimates of the frames before the last,
+  // as far back as it went, each costing both passes; `kept` whether they replace the
+  // first's (KeepSecond, TrackerOptions::back_over_margin).
+  struct SecondPass {
+    std::vector<TrackedFrame> estimates;
+    bool kept = false;
+  };
+  static SecondPass GoBack(const Tracker& tracker, const std::vector<Frame>& frames,
+                           const std::vector<TrackedFrame>& first);
 
  private:
   const Tracker* tracker_;
