@@ -93,6 +93,10 @@ struct RigPlacementOptions {
   // frame around the best: a walker moves about 50 mm a frame, so a placement a few frames
   // off still matches most sightings within match_mm.
   int max_clock_offset_frames = 0;
+  // The offset is refined over this many frames either side of the best (rig_placement.cc):
+  // the frames a walker (1.4 m/s) takes to cross match_mm, over which the placement's
+  // tightness falls by a quarter to a half. `jgpm calibrate` sets it from the frame rate.
+  int offset_fit_frames = 10;
 };
 
 struct PlacedCamera {

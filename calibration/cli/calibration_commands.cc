@@ -243,6 +243,7 @@ std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, cons
   const double fps = evidence[0].fps > 0 ? evidence[0].fps : 30;
   options.correlated_frames = std::max(1.0, 0.5 * fps);
   options.max_clock_offset_frames = static_cast<int>(std::lround(request.max_clock_offset_s * fps));
+  options.offset_fit_frames = std::max(1, static_cast<int>(std::lround(options.match_mm / 1400 * fps)));
   const RigPlacement placed = PlaceRig(rig, options);
   std::printf("placed from the walkers they share, and refined together (cam0's floor point is the origin, its "
               "view +z):\n");

@@ -39,9 +39,8 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   // People far from a surveillance camera are 30-60 px tall with limbs 2-3 px wide, and
   // a head's top or a foot's tip is a pixel or two: the tracker's clean-up (an opening of
   // 1 px radius) trims them. Heads and feet need the whole blob: no opening (specks are
-  // dropped by size and shape anyway).
+  // dropped by size and shape anyway). The tracker's closing of 1 px.
   spec.foreground.open_px = 0;
-  spec.foreground.radii_at_240_rows = true;  // its closing, as the calibration was measured
   const std::unique_ptr<FrameSource> source = MakeFrameSource(spec);
   const Camera& camera = source->cameras().front();
   WalkerPointFinder finder(camera.width, camera.height);

@@ -27,7 +27,7 @@ ForegroundExtractor::ForegroundExtractor(const ForegroundOptions& options, int w
   if (!options.Check(&why)) ThrowInputError("foreground options", why);
 }
 
-std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double min_area) {
+std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double min_area, bool tight) {
   const int n = static_cast<int>(images.size());
   std::vector<cv::Mat> grey(n), moving(n);
   if (n < 2) {
@@ -64,6 +64,8 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
   const int rows = size.height;
   const int join = std::max(1, static_cast<int>(std::lround(0.02 * rows)));  // 2% of the height
   const cv::Mat join_kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * join + 1, 2 * join + 1));
+  // Tight regions are grown by the 5x5 blur's reach and a pixel: what the blur spread.
+  const cv::Mat tight_kernel = cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(7, 7));
   cv::parallel_for_(cv::Range(0, n), [&](const cv::Range& range) {
     for (int i = range.start; i < range.end; ++i) {
       cv::Mat m = cv::Mat::zeros(size, CV_8UC1);
@@ -77,15 +79,31 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
       // crowd) is not a person's and is left to the median, which handles it.
       std::vector<std::vector<cv::Point>> contours;
       cv::findContours(m, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+      cv::Mat changed;  // tight: the pieces' own pixels, before they were joined
+      if (tight) {
+        changed = cv::Mat::zeros(size, CV_8UC1);
+        if (i > 0) changed |= change[i - 1] > threshold;
+        if (i + 1 < n) changed |= change[i] > threshold;
+      }
       m.setTo(0);
       for (const auto& contour : contours) {
         const cv::Rect box = cv::boundingRect(contour);
         if (box.height < 0.6 * box.width) continue;
-        std::vector<cv::Point> hull;
-        cv::convexHull(contour, hull);
+        std::vector<cv::Point> hull, inside;
+        if (tight) {
+          // The hull of the changed pixels within the joined region: the person without
+          // the joining's margin.
+          cv::Mat region = cv::Mat::zeros(size, CV_8UC1);
+          cv::drawContours(region, std::vector<std::vector<cv::Point>>{contour}, 0, 255, cv::FILLED);
+          cv::findNonZero(region & changed, inside);
+          if (inside.empty()) continue;
+          cv::convexHull(inside, hull);
+        } else {
+          cv::convexHull(contour, hull);
+        }
         cv::fillConvexPoly(m, hull, 255);
       }
-      cv::dilate(m, m, join_kernel);
+      cv::dilate(m, m, tight ? tight_kernel : join_kernel);
       if (size != full) cv::resize(m, m, full, 0, 0, cv::INTER_NEAREST);
       moving[i] = m;
     }
@@ -170,6 +188,21 @@ void ForegroundExtractor::Learn(const std::vector<cv::Mat>& images, const std::v
     for (cv::Mat& u : use) cv::bitwise_or(u, unseen, u);
   }
   cv::Mat median = MaskedMedian(images, use);
+  // Some of those pixels were only in the regions' margin (the joining grows a region by
+  // 2% of the height on each side, 10 px at 480 rows, where a distant walker is 15-20 px
+  // wide): seen often enough beside the tight regions, their median is the scene.
+  if (!moving.empty() && cv::countNonZero(unseen) > 0) {
+    const std::vector<cv::Mat> tight = MovingRegions(images, options_.min_area, true);
+    std::vector<cv::Mat> still(n);
+    for (int k = 0; k < n; ++k) cv::compare(tight[k], 0, still[k], cv::CMP_EQ);
+    cv::Mat seen;
+    cv::compare(NonZeroCount(still), enough, seen, cv::CMP_GE);
+    seen &= unseen;
+    if (cv::countNonZero(seen) > 0) {
+      MaskedMedian(images, still).copyTo(median, seen);
+      unseen &= ~seen;
+    }
+  }
   // Where the scene never showed (a walker coming straight at the camera covers the same
   // pixels all along), the median is the person: filled in from the scene around instead.
   // A hole of people, not most of the image (a crowd, a moving camera: the median then).
@@ -235,9 +268,8 @@ cv::Mat ForegroundExtractor::Apply(const cv::Mat& bgr) {
   cv::Mat raw;
   subtractor_->apply(image, raw, options_.learning_rate);
   cv::Mat mask = raw == 255;  // shadows are 127
-  const double scale = options_.radii_at_240_rows ? height_ / 240.0 : 1.0;
   for (const auto& [radius, op] : {std::pair{options_.open_px, cv::MORPH_OPEN}, {options_.close_px, cv::MORPH_CLOSE}}) {
-    const int r = static_cast<int>(std::lround(radius * scale));
+    const int r = static_cast<int>(std::lround(radius));
     if (r < 1) continue;
     cv::morphologyEx(mask, mask, op, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * r + 1, 2 * r + 1)));
   }

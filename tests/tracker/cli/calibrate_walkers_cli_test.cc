@@ -142,16 +142,17 @@ TEST_F(CalibrateWalkersCli, PlacesTwoCamerasFromTheWalkersTheyShare) {
   }
   ASSERT_NEAR(truth[0].CentreInWorld().norm(), 4500, 1e-6);
   // The bounds for each camera: focal length 5%, angles 2 degrees. The heights rest
-  // on the walkers' stature as their silhouettes show it, which on these videos' masks is
-  // 7-8% low (each camera alone too): within 10%, as for one camera, and their ratio
-  // within 3%.
+  // on the walkers' stature as their silhouettes show it: from these videos 4.6% and 3.3%
+  // low (7.4% and 8.0% while the learnt background's margin was filled in from the room
+  // around, which left the front camera's walkers wide ghosts): within 6%, the 5%
+  // and the sampling error of ten walks; and their ratio within 3%.
   for (int k = 0; k < 2; ++k) {
     SCOPED_TRACE("cam" + std::to_string(k));
     const CameraAngles angles = AnglesOf(found[k]), true_angles = AnglesOf(truth[k]);
     EXPECT_NEAR(found[k].fx, truth[k].fx, 0.05 * truth[k].fx) << r.out;
     EXPECT_NEAR(angles.tilt_deg, true_angles.tilt_deg, 2) << r.out;
     EXPECT_NEAR(angles.roll_deg, true_angles.roll_deg, 2) << r.out;
-    EXPECT_NEAR(angles.height_mm, true_angles.height_mm, 0.10 * true_angles.height_mm) << r.out;
+    EXPECT_NEAR(angles.height_mm, true_angles.height_mm, 0.06 * true_angles.height_mm) << r.out;
   }
   EXPECT_NEAR(found[1].CentreInWorld().y() / found[0].CentreInWorld().y(),
               truth[1].CentreInWorld().y() / truth[0].CentreInWorld().y(), 0.03 * 5500 / 4500)
@@ -180,7 +181,9 @@ void WriteStartedLate(const fs::path& video, int frames, const fs::path& out) {
 }
 
 TEST_F(CalibrateWalkersCli, FindsHowMuchLaterTheSecondCamerasVideosStarted) {
-  // cam1's videos started 9 frames (0.3 s) after cam0's, in every take.
+  // cam1's videos started 9 frames (0.3 s) after cam0's, in every take. (The tightest
+  // placement alone is 11 frames late on these walks: the offset is the tightness
+  // parabola's vertex, rig_placement.cc.)
   std::string walkers;
   for (size_t k = 0; k < clips_.size(); ++k) {
     const fs::path late = dir_->path() / ("late" + std::to_string(k) + ".avi");

@@ -117,9 +117,10 @@ TEST(Foreground, Mog2MasksOverlapTheExactSilhouettes) {
 // The room learnt from the clip's own frames, with no picture of it: in the side cameras as
 // good as the picture; in the front ones, where the walker comes straight at the camera and
 // covers the same pixels all along (the plain per-pixel median holds the walker: 0.29 and
-// 0.44 against 0.85 from the picture), those pixels are filled in from the room around and
-// give 0.66 and 0.62 (measured): the floor between the walker's legs is never seen, only
-// guessed.
+// 0.44 against 0.85 from the picture), 0.83 and 0.80 (measured): the pixels beside the
+// walker, in the moving regions' margin, are their median where the tight regions leave
+// them still; only those the walker always covered are filled in from the room around.
+// Filling in the whole margin gave 0.66 and 0.62.
 TEST(Foreground, TheRoomLearntFromTheVideoIsAsGoodAsAPictureOfIt) {
   const Overlap room = Measure(Shared().clean, ForegroundOptions{});
   const Overlap learnt = Measure(Shared().clean, ForegroundOptions{}, true);
@@ -129,7 +130,7 @@ TEST(Foreground, TheRoomLearntFromTheVideoIsAsGoodAsAPictureOfIt) {
   for (size_t c = 0; c < room.camera_mean.size(); ++c) {
     std::printf("camera %zu: IoU from the room %.3f, learnt %.3f, plain median %.3f\n", c, room.camera_mean[c],
                 learnt.camera_mean[c], median.camera_mean[c]);
-    EXPECT_GT(learnt.camera_mean[c], room.camera_mean[c] - 0.3) << c;
+    EXPECT_GT(learnt.camera_mean[c], room.camera_mean[c] - 0.1) << c;
   }
   EXPECT_LT(*std::min_element(median.camera_mean.begin(), median.camera_mean.end()),
             *std::min_element(learnt.camera_mean.begin(), learnt.camera_mean.end()) - 0.15);  // what it fixes
