@@ -238,7 +238,7 @@ double Tightness(const Candidate& c, const RigPlacementOptions& options) {
 // (rig_placement.h): confirmed first, then the tightest; tried every step frames, then
 // frame by frame around the best; ties go to the offset nearest 0. Each offset's
 // placement is refitted on its own matches, so the tightness is noisy from one offset to
-// the next (+-5% on the tests' walks, where its peak is about 10 frames wide): the offset
+// the next (+-5% on the tests' walks, across a peak about 20 frames wide): the offset
 // taken is the vertex of a parabola fitted to the confirmed offsets' tightness within
 // offset_fit_frames of the tightest, when it opens downwards. Its offset in `offset`.
 std::optional<Candidate> BestOffsetPlacement(const std::vector<Sighting>& sightings, const PlacedSet& placed,
