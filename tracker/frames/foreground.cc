@@ -71,6 +71,7 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
       cv::Mat m = cv::Mat::zeros(size, CV_8UC1);
       if (i > 0) m |= change[i - 1] > threshold;
       if (i + 1 < n) m |= change[i] > threshold;
+      const cv::Mat changed = tight ? m.clone() : cv::Mat();  // the pieces before they are joined
       cv::dilate(m, m, join_kernel);  // a body's moving parts (head, arms, legs) join up
       RemoveSpecks(&m, min_area);
       // A region shaped like a standing person (at least 0.6 as tall as wide: a walker with
@@ -79,14 +80,9 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
       // crowd) is not a person's and is left to the median, which handles it.
       std::vector<std::vector<cv::Point>> contours;
       cv::findContours(m, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-      cv::Mat changed;  // tight: the pieces' own pixels, before they were joined
-      if (tight) {
-        changed = cv::Mat::zeros(size, CV_8UC1);
-        if (i > 0) changed |= change[i - 1] > threshold;
-        if (i + 1 < n) changed |= change[i] > threshold;
-      }
       m.setTo(0);
-      for (const auto& contour : contours) {
+      for (size_t k = 0; k < contours.size(); ++k) {
+        const std::vector<cv::Point>& contour = contours[k];
         const cv::Rect box = cv::boundingRect(contour);
         if (box.height < 0.6 * box.width) continue;
         std::vector<cv::Point> hull, inside;
@@ -94,7 +90,7 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
           // The hull of the changed pixels within the joined region: the person without
           // the joining's margin.
           cv::Mat region = cv::Mat::zeros(size, CV_8UC1);
-          cv::drawContours(region, std::vector<std::vector<cv::Point>>{contour}, 0, 255, cv::FILLED);
+          cv::drawContours(region, contours, static_cast<int>(k), 255, cv::FILLED);
           cv::findNonZero(region & changed, inside);
           if (inside.empty()) continue;
           cv::convexHull(inside, hull);
