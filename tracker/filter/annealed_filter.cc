@@ -67,12 +67,17 @@ void AnnealedFilter::Transform(const std::function<void(double* state)>& change,
   }
 }
 
-void AnnealedFilter::Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame) {
+void AnnealedFilter::Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame, double size,
+                              double size_std) {
   const PlacementIndex p = model_.placement();
   for (int i = every - 1; i < particles_.rows(); i += every) {
     Random random(options_.seed, frame, 5000, i);
     particles_(i, p.x) = floor_mm.x() + std_mm * random.Normal();
     particles_(i, p.z) = floor_mm.y() + std_mm * random.Normal();
+    if (size > 0) {
+      particles_(i, p.size) = size * (1 + size_std * random.Normal());
+      model_.Normalise(particles_.row(i).data());
+    }
   }
 }
 

@@ -81,8 +81,12 @@ class AnnealedFilter {
   void Set(int dimension, double value) { particles_.col(dimension).setConstant(value); }
   // Moves every `every`-th particle's place on the floor to about `floor_mm` (normal, `std_mm`
   // each way), the rest of its state kept: a second look where the masks say the person
-  // is, which the annealing then keeps or drops. `frame` keys the random numbers.
-  void Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame);
+  // is, which the annealing then keeps or drops. `frame` keys the random numbers. With
+  // `size` > 0 their size goes with it (normal, `size_std` relative): where the person's
+  // height was read too, a body of the wrong size stays off in depth (a shorter body
+  // placed farther draws the same head) however its place is moved.
+  void Relocate(const Eigen::Vector2d& floor_mm, double std_mm, int every, int frame, double size = 0,
+                double size_std = 0);
   // Turns every `every`-th particle to a heading drawn uniformly, the rest of its state
   // kept: a look in every direction, which the annealing keeps where the silhouettes
   // agree. `frame` keys the random numbers.

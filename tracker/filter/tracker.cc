@@ -493,8 +493,15 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     bool merged = false;
     for (size_t c = 0; c < last_drawn_.size() && c < seen.areas.size(); ++c)
       merged = merged || (last_drawn_[c] > 0 && seen.areas[c] > options_.relocate_merged * last_drawn_[c]);
-    if (seen.found && seen.feet_seen && !merged && away > options_.relocate_distance_mm && away <= reach) {
-      filter_->Relocate(seen.floor_mm, 120, options_.relocate_share, frame.index);
+    // Farther than a walker goes is someone else, unless their blob has the estimate's head
+    // at its top: then it is the person, and the estimate is off in depth.
+    if (seen.found && seen.feet_seen && !merged && away > options_.relocate_distance_mm &&
+        (away <= reach || HeadOnBlob(seen))) {
+      // With the person's height read, the relocated bodies take it.
+      const double size = seen.height_mm > 0 && !options_.known_size
+                              ? std::clamp(seen.height_mm / model_height_mm_, 0.8, 1.25)
+                              : 0;
+      filter_->Relocate(seen.floor_mm, 120, options_.relocate_share, frame.index, size, options_.relocate_size_std);
     }
   }
   if (hidden_ && !frame.dropped) {
@@ -794,6 +801,23 @@ bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
                          ? cv::countNonZero(drawn[c] & frame.masks[c] & ~frame.hidden[c])
                          : 0;
     if (own > 0 && 2 * under >= own && 3 * (own - under - seen) < own) return true;
+  }
+  return false;
+}
+
+bool Tracker::HeadOnBlob(const PersonSighting& seen) const {
+  TrackedFrame estimate;
+  estimate.state = filter_->Mean();
+  SetEstimate(&estimate);
+  int top = 0;
+  estimate.joints_mm.row(1).maxCoeff(&top);
+  for (size_t c = 0; c < cameras_.size() && c < seen.boxes.size(); ++c) {
+    const cv::Rect& box = seen.boxes[c];
+    Eigen::Vector2d head;
+    if (box.empty() || !cameras_[c].Project(estimate.joints_mm.col(top), &head)) continue;
+    if (head.x() >= box.x && head.x() <= box.x + box.width &&
+        std::abs(head.y() - box.y) <= options_.head_on_blob * box.height)
+      return true;
   }
   return false;
 }

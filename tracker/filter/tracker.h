@@ -222,6 +222,17 @@ struct TrackerOptions {
   // frame before: one walker's blob is within about 1.3 times (a stride's swing, the
   // estimate's IoU of 0.7-0.8), two walkers' merged blob about twice.
   double relocate_merged = 1.6;
+  // A blob farther than that is still the person when the estimate's highest joint (the
+  // head's top, less its radius) is seen within its columns and within this share of its
+  // height of its top row: side by side, two walkers' heads are a body's width apart, and
+  // one walker's estimate gone shorter and farther keeps its head on theirs (vtest.avi,
+  // two walkers side by side: one drew head to waist 4.6 m too far for 100 frames). A
+  // fifth: a head and neck.
+  double head_on_blob = 0.2;
+  // The relocated bodies' size spread about the height read (relative): one frame's
+  // reading of a walker's height varies by about 2% on clean masks (the stride's dip) and
+  // 5-10% on vtest.avi's (the head's blur, the feet's shadow); 5%, between.
+  double relocate_size_std = 0.05;
   // A person explained badly while someone is seen where they could not have walked to is
   // taken for hidden (predicted, not restarted on what is seen) for at most this long: a
   // walker passes behind a pillar or a parked car in a second or two.
@@ -359,6 +370,9 @@ class Tracker {
   bool ExplainsBadly(const Eigen::VectorXd& state, const std::vector<CameraObservation>& observations) const;
   // Whether a body with these joints is at least min_in_view in some camera's image.
   bool InView(const Eigen::Matrix3Xd& joints) const;
+  // Whether the particles' mean has its head at the top of one of `seen`'s blobs
+  // (TrackerOptions::head_on_blob).
+  bool HeadOnBlob(const PersonSighting& seen) const;
   // The frame's pose, bone ends, size, width and heading from out->state (as ExactPose).
   void SetEstimate(TrackedFrame* out) const;
   // The build learnt so far, to the body, the state model and the placers.
