@@ -474,6 +474,12 @@ Eigen::Vector3d WalkCentre() {
   return centre;
 }
 
+// One camera `height_mm` up and 9 m back from the walk, looking down on it (as over a plaza).
+Camera OverTheWalk(double height_mm) {
+  const Eigen::Vector3d centre = WalkCentre();
+  return LookAtCamera("cam0", 320, 240, 500, {centre.x(), height_mm, centre.z() - 9000}, {centre.x(), 900, centre.z()});
+}
+
 // The test walk's kFrames frames rendered through one camera into `dir`/clip; its truth.
 ClipGroundTruth RenderThrough(const Camera& camera, const fs::path& dir) {
   const Walk0701 walk;
@@ -496,9 +502,7 @@ ClipGroundTruth RenderThrough(const Camera& camera, const fs::path& dir) {
 // a head's height, an adult's height places nobody well: 3.9 m off; 6.5 m not told.)
 TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
   const Fixture& f = Shared();
-  const Eigen::Vector3d centre = WalkCentre();
-  const Camera above = LookAtCamera("cam0", 320, 240, 500, {centre.x(), 6000, centre.z() - 9000},
-                                    {centre.x(), 900, centre.z()});
+  const Camera above = OverTheWalk(6000);
   test::TempDir dir;
   const ClipGroundTruth truth = RenderThrough(above, dir.path());
   const auto run = [&](bool told, std::vector<double>* size) {
@@ -552,9 +556,7 @@ TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
 // alone pull the estimate in at about 60 mm a frame: 467 (376-552).
 TEST(Tracker, AnEstimateTooShortAndTooFarIsBroughtToTheWalker) {
   const Fixture& f = Shared();
-  const Eigen::Vector3d centre = WalkCentre();
-  const Camera above = LookAtCamera("cam0", 320, 240, 500, {centre.x(), 4000, centre.z() - 9000},
-                                    {centre.x(), 900, centre.z()});
+  const Camera above = OverTheWalk(4000);
   test::TempDir dir;
   const ClipGroundTruth truth = RenderThrough(above, dir.path());
   double mean_of_seeds = 0;
