@@ -333,7 +333,7 @@ bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, con
     guess->size_seen = false;
   } else {
     std::sort(heights.begin(), heights.end());
-    guess->size = std::clamp(heights[heights.size() / 2] / model_height_mm_, 0.8, 1.25);
+    guess->size = SizeOf(heights[heights.size() / 2]);
     guess->size_std = 0.04;
   }
   // A walker faces where they go: the fitted walk gives the heading and the speed, when
@@ -498,9 +498,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     if (seen.found && seen.feet_seen && !merged && away > options_.relocate_distance_mm &&
         (away <= reach || HeadOnBlob(seen))) {
       // With the person's height read, the relocated bodies take it.
-      const double size = seen.height_mm > 0 && !options_.known_size
-                              ? std::clamp(seen.height_mm / model_height_mm_, 0.8, 1.25)
-                              : 0;
+      const double size = seen.height_mm > 0 && !options_.known_size ? SizeOf(seen.height_mm) : 0;
       filter_->Relocate(seen.floor_mm, 120, options_.relocate_share, frame.index, size, options_.relocate_size_std);
     }
   }
@@ -804,6 +802,8 @@ bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
   }
   return false;
 }
+
+double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / model_height_mm_, 0.8, 1.25); }
 
 bool Tracker::HeadOnBlob(const PersonSighting& seen) const {
   TrackedFrame estimate;

@@ -370,6 +370,9 @@ class Tracker {
   bool ExplainsBadly(const Eigen::VectorXd& state, const std::vector<CameraObservation>& observations) const;
   // Whether a body with these joints is at least min_in_view in some camera's image.
   bool InView(const Eigen::Matrix3Xd& joints) const;
+  // The size of a person `height_mm` tall (floor to head's top), within an adult's range
+  // (0.8-1.25 of the model's height).
+  double SizeOf(double height_mm) const;
   // Whether the particles' mean has its head at the top of one of `seen`'s blobs
   // (TrackerOptions::head_on_blob).
   bool HeadOnBlob(const PersonSighting& seen) const;

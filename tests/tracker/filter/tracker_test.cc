@@ -82,13 +82,14 @@ const Fixture& Shared() {
   return fixture;
 }
 
-// A tracker on the shared model and the clip's cameras: `particles` per layer, `seed`.
-std::unique_ptr<Tracker> SharedTracker(int particles, uint64_t seed = 1) {
+// A tracker on the shared model and `cameras` (default: the shared clip's): `particles`
+// per layer, `seed`.
+std::unique_ptr<Tracker> SharedTracker(int particles, uint64_t seed = 1, const std::vector<Camera>* cameras = nullptr) {
   const Fixture& f = Shared();
   TrackerOptions options;
   options.annealing.particles = particles;
   options.annealing.seed = seed;
-  return std::make_unique<Tracker>(*f.loaded, f.truth.cameras, options);
+  return std::make_unique<Tracker>(*f.loaded, cameras ? *cameras : f.truth.cameras, options);
 }
 
 // A small budget: 2 cameras at 160x120, 150 particles x 4 layers.
@@ -506,10 +507,8 @@ TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
   test::TempDir dir;
   const ClipGroundTruth truth = RenderThrough(above, dir.path());
   const auto run = [&](bool told, std::vector<double>* size) {
-    TrackerOptions options;
-    options.annealing.particles = 100;
-    options.annealing.seed = 3;
-    Tracker tracker(*f.loaded, truth.cameras, options);
+    const std::unique_ptr<Tracker> held = SharedTracker(100, 3, &truth.cameras);
+    Tracker& tracker = *held;
     std::vector<Frame> frames;
     for (int k = 0; k < kFrames; ++k) {
       frames.push_back(ClipFrameAt(truth, dir.path() / "clip", k));
@@ -562,10 +561,8 @@ TEST(Tracker, AnEstimateTooShortAndTooFarIsBroughtToTheWalker) {
   double mean_of_seeds = 0;
   constexpr int kSeeds = 8;
   for (uint64_t seed = 1; seed <= kSeeds; ++seed) {
-    TrackerOptions options;
-    options.annealing.particles = 100;
-    options.annealing.seed = seed;
-    Tracker tracker(*f.loaded, truth.cameras, options);
+    const std::unique_ptr<Tracker> held = SharedTracker(100, seed, &truth.cameras);
+    Tracker& tracker = *held;
     InitialGuess guess = TruthGuess(truth, *f.loaded, tracker.state_model());
     // Along the line of sight through the head's top: a head at 0.76 / size of its height.
     const double head_mm = truth.frames[0].joints_mm.row(1).maxCoeff();
@@ -1207,10 +1204,8 @@ TEST(Tracker, GoingBackOverAStartPlacesItsFirstFramesFromLaterOnes) {
   double forward = 0, backward = 0;
   const int seeds = 4;
   for (int seed = 1; seed <= seeds; ++seed) {
-    TrackerOptions options;
-    options.annealing.particles = 100;
-    options.annealing.seed = seed;
-    Tracker tracker(*f.loaded, truth.cameras, options);
+    const std::unique_ptr<Tracker> held = SharedTracker(100, seed, &truth.cameras);
+    Tracker& tracker = *held;
     ASSERT_TRUE(tracker.StartFromFrames({frames.begin(), frames.begin() + 15}));
     TrackedFrame at_first;
     for (const Frame& frame : frames) {
