@@ -83,6 +83,7 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     // |S|, |S n O n R|, |S n grow(O n R)| over the rows drawn, |grow(S) n O n R| over them
     // and a row either side; then the canvas is blank again.
     int model = 0, overlap = 0, inside = 0, explained = 0;
+    const int rows_drawn = canvas.last_row() - canvas.first_row();
     const int words = canvas.words_per_row();
     const bool observed = !o.empty();
     if (canvas.last_row() > canvas.first_row()) {
@@ -102,6 +103,7 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     canvas.Clear();
     CameraScore score;
     score.model_px = model;
+    score.model_rows = rows_drawn;
     score.overlap_px = overlap;
     score.observed_px = observed ? o.region_count() : 0;
     score.outside_px = model - inside;

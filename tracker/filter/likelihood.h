@@ -62,6 +62,7 @@ struct LikelihoodOptions {
 // One camera's part of a cost.
 struct CameraScore {
   int model_px = 0;      // |S|
+  int model_rows = 0;    // the rows S spans, top to bottom
   int observed_px = 0;   // |O n R|
   int overlap_px = 0;    // |S n O n R|
   int outside_px = 0;    // |S \ grow(O n R)|

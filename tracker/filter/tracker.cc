@@ -488,11 +488,16 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     const PersonSighting& seen = located();
     const double away = (seen.floor_mm - predicted_floor_mm).norm();
     const double reach = options_.relocate_distance_mm + 2000 * options_.relocate_every * std::max(dt, 1.0 / 60);
-    // A blob with far more pixels than the estimate draws there holds someone else too
+    // A blob far wider for its height than the estimate's drawing holds someone else too
     // (two walkers passing): its place is neither's.
     bool merged = false;
-    for (size_t c = 0; c < last_drawn_.size() && c < seen.areas.size(); ++c)
-      merged = merged || (last_drawn_[c] > 0 && seen.areas[c] > options_.relocate_merged * last_drawn_[c]);
+    for (size_t c = 0; c < last_drawn_.size() && c < seen.areas.size(); ++c) {
+      const CameraScore& drawn = last_drawn_[c];
+      const double blob_rows = seen.boxes[c].height;
+      merged = merged || (drawn.model_rows > 0 && blob_rows > 0 &&
+                          seen.areas[c] / (blob_rows * blob_rows) >
+                              options_.relocate_merged * drawn.model_px / (double(drawn.model_rows) * drawn.model_rows));
+    }
     // Farther than a walker goes is someone else, unless their blob has the estimate's head
     // at its top: then it is the person, and the estimate is off in depth.
     if (seen.found && seen.feet_seen && !merged && away > options_.relocate_distance_mm &&
@@ -667,8 +672,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   // estimate is out of its view says nothing. When the estimate explains the views
   // badly, is anyone there at all? A person-sized blob standing on the floor in some
   // camera, not a segmentation's specks (LocatePerson).
-  last_drawn_.clear();
-  for (const CameraScore& c : out.cameras) last_drawn_.push_back(c.model_px);
+  last_drawn_ = out.cameras;
   PersonSighting seen;
   if (out.MeanIou() < options_.lost_iou) {
     seen = located();

@@ -218,9 +218,11 @@ struct TrackerOptions {
   int relocate_every = 5;
   double relocate_distance_mm = 300;
   int relocate_share = 10;
-  // Not to a blob with this many times the pixels the estimate drew in that camera the
-  // frame before: one walker's blob is within about 1.3 times (a stride's swing, the
-  // estimate's IoU of 0.7-0.8), two walkers' merged blob about twice.
+  // Not to a blob with this many times the pixels for its height (squared) that the
+  // estimate drew in that camera the frame before: one walker's blob is within about 1.3
+  // times (a stride's swing, the estimate's IoU of 0.7-0.8), two walkers' merged blob
+  // about twice. For its height, so that an estimate drawn too small or too far (a
+  // smaller drawing of the same shape) does not take every blob for two people.
   double relocate_merged = 1.6;
   // A blob farther than that is still the person when the estimate's highest joint (the
   // head's top, less its radius) is seen within its columns and within this share of its
@@ -408,7 +410,7 @@ class Tracker {
   double last_time_s_ = 0;
   int bad_frames_ = 0;
   int out_of_view_ = 0;  // frames in a row drawn in no camera
-  std::vector<int> last_drawn_;  // the last frame's estimate's pixels per camera
+  std::vector<CameraScore> last_drawn_;  // the last frame's estimate, per camera
   bool hidden_ = false;  // explained badly while someone is seen elsewhere: predicted
   bool behind_ = false;  // hidden behind others tracked with them (Behind)
   double last_good_time_s_ = -1e9;  // the last frame explained well

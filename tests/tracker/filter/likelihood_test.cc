@@ -89,6 +89,7 @@ TEST(Likelihood, CountsEqualBruteForce) {
     cv::dilate(model, model_grown, grow);
     cv::dilate(seen, seen_grown, grow);
     EXPECT_EQ(scores[c].model_px, cv::countNonZero(model)) << c;
+    EXPECT_EQ(scores[c].model_rows, cv::boundingRect(model).height) << c;
     EXPECT_EQ(scores[c].observed_px, cv::countNonZero(seen)) << c;
     EXPECT_EQ(scores[c].overlap_px, cv::countNonZero(model & seen)) << c;
     EXPECT_EQ(scores[c].outside_px, cv::countNonZero(model & ~seen_grown)) << c;

@@ -549,10 +549,13 @@ TEST(Tracker, AStartWithTheLegsHiddenByOthersIsPlacedByTheHead) {
 // (every 5 frames) read the walker's place from their feet and their height from head and
 // feet, and move a share of the particles there with that size, although farther than a
 // walker goes between looks: the silhouettes take them. Oracle: the root's mean distance
-// from the truth over frames 5-14 (after the first look), mean of seeds 1-8: measured 204
-// mm (5 seeds 54-91, 3 at 311-520, whose first looks the annealing dropped).
+// from the truth over frames 5-14 (after the first look), mean of seeds 1-8: measured 135
+// mm (7 seeds 54-172; seed 4 at 421, whose first look the annealing dropped).
 // Without (the place moved only within a walk's reach, the size kept) the silhouettes
-// alone pull the estimate in at about 60 mm a frame: 467 (376-552).
+// alone pull the estimate in at about 60 mm a frame: 467 (376-552). With the merged-blob
+// check on pixels alone (TrackerOptions::relocate_merged: the blob against the estimate's
+// drawing, not against it for its height), the too-small drawing made the walker's own
+// blob look like two people's in seeds 2 and 5 (1.61 times its pixels): 204.
 TEST(Tracker, AnEstimateTooShortAndTooFarIsBroughtToTheWalker) {
   const Fixture& f = Shared();
   const Camera above = OverTheWalk(4000);
@@ -591,7 +594,7 @@ TEST(Tracker, AnEstimateTooShortAndTooFarIsBroughtToTheWalker) {
     mean_of_seeds += mean_mm / kSeeds;
   }
   std::printf("root off by %.0f mm over frames 5-14, mean of %d seeds\n", mean_of_seeds, kSeeds);
-  EXPECT_LT(mean_of_seeds, 330);
+  EXPECT_LT(mean_of_seeds, 170);
 }
 
 // A second walker in view: the walker's own silhouette in camera 0, drawn a third larger
