@@ -190,22 +190,29 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
       walker[w * kWalkerParameters + kWalkerLean] = 0;
     }
   };
+  // The fit over the walkers `kept` says yes to (all when empty), of `cam` and `own`.
+  auto add_fit = [&](ceres::Problem* problem, double* cam, std::vector<double>* own, const std::vector<bool>& kept) {
+    for (size_t i = 0; i < pairs.size(); ++i) {
+      if (!kept.empty() && !kept[pair_walker[i]]) continue;
+      auto* cost = new PairCost{pairs[i], options.person_height_mm, options.head_radius_mm, options.foot_share};
+      problem->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(cost),
+          new ceres::HuberLoss(2.0), cam, &(*own)[pair_walker[i] * kWalkerParameters]);
+    }
+    for (int w = 0; w < walkers; ++w) {
+      if (!kept.empty() && !kept[w]) continue;
+      problem->AddResidualBlock(new ceres::AutoDiffCostFunction<WalkerPrior, 2, kWalkerParameters>(new WalkerPrior{
+                                    options.person_height_mm, options.person_height_sd_mm, options.lean_sd_mm}),
+                                nullptr, &(*own)[w * kWalkerParameters]);
+    }
+    if (fixed_focal) problem->SetManifold(cam, new ceres::SubsetManifold(kCameraParameters, {kLogFocal}));
+    // A camera on its side or upside down would explain heads below feet: rolls beyond
+    // kMaxRoll are not cameras over walkers (their images are turned upright first).
+    problem->SetParameterLowerBound(cam, kRoll, -kMaxRollDeg * kDeg);
+    problem->SetParameterUpperBound(cam, kRoll, kMaxRollDeg * kDeg);
+  };
   ceres::Problem problem;
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    auto* cost = new PairCost{pairs[i], options.person_height_mm, options.head_radius_mm, options.foot_share};
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairCost, 2, kCameraParameters, kWalkerParameters>(cost),
-                             new ceres::HuberLoss(2.0), camera, &walker[pair_walker[i] * kWalkerParameters]);
-  }
-  for (int w = 0; w < walkers; ++w) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<WalkerPrior, 2, kWalkerParameters>(new WalkerPrior{
-                                 options.person_height_mm, options.person_height_sd_mm, options.lean_sd_mm}),
-                             nullptr, &walker[w * kWalkerParameters]);
-  }
-  if (fixed_focal) problem.SetManifold(camera, new ceres::SubsetManifold(kCameraParameters, {kLogFocal}));
-  // A camera on its side or upside down would explain heads below feet: rolls beyond
-  // kMaxRoll are not cameras over walkers (their images are turned upright first).
-  problem.SetParameterLowerBound(camera, kRoll, -kMaxRollDeg * kDeg);
-  problem.SetParameterUpperBound(camera, kRoll, kMaxRollDeg * kDeg);
+  add_fit(&problem, camera, &walker, {});
 
   // Starts: a grid of fields of view and tilts (roll 0), each with the height that makes
   // the median walker person-height tall (heights scale with the camera's, the head's
@@ -288,16 +295,43 @@ WalkerCalibration CalibrateFromWalkers(const std::vector<HeadFoot>& points, int 
   const double scale = std::max(1.0, spread);
   auto sd = [&](int i) { return std::sqrt(std::max(0.0, c[i * kCameraParameters + i] * scale)); };
 
+  // The jackknife over groups of walkers (the options say why), each refit from the fit.
+  Eigen::Vector4d walkers_sd = Eigen::Vector4d::Zero();
+  const int groups = std::min(options.jackknife_groups, walkers);
+  if (groups >= 3) {
+    std::vector<Eigen::Vector4d> fits;
+    ceres::Solver::Options refit = solver;
+    refit.linear_solver_type = ceres::DENSE_SCHUR;  // the walkers' blocks eliminated first
+    for (int g = 0; g < groups; ++g) {
+      std::vector<bool> kept(walkers);
+      for (int w = 0; w < walkers; ++w) kept[w] = w % groups != g;
+      Eigen::Vector4d cam = Eigen::Map<const Eigen::Vector4d>(camera);
+      std::vector<double> own = walker;
+      ceres::Problem without;
+      add_fit(&without, cam.data(), &own, kept);
+      ceres::Solver::Summary summary;
+      ceres::Solve(refit, &without, &summary);
+      if (summary.IsSolutionUsable()) fits.push_back(cam);
+    }
+    if (static_cast<int>(fits.size()) == groups) {
+      Eigen::Vector4d mean = Eigen::Vector4d::Zero();
+      for (const Eigen::Vector4d& f : fits) mean += f / groups;
+      for (const Eigen::Vector4d& f : fits) walkers_sd += (f - mean).cwiseAbs2() * (groups - 1.0) / groups;
+      walkers_sd = walkers_sd.cwiseSqrt();
+    }
+  }
+
   WalkerCalibration result;
   result.walkers = walkers;
   std::copy(camera, camera + kCameraParameters, result.parameters.begin());
   result.covariance = Eigen::Map<const Eigen::Matrix4d>(c) * scale;  // symmetric: storage order moot
   const double focal = std::exp(camera[kLogFocal]);
   const double camera_height = std::exp(camera[kLogHeight]);
-  result.focal_px = {fixed_focal ? intrinsics.fx : focal, fixed_focal ? 0 : focal * sd(kLogFocal)};
-  result.height_mm = {camera_height, camera_height * sd(kLogHeight)};
-  result.tilt_deg = {camera[kTilt] / kDeg, sd(kTilt) / kDeg};
-  result.roll_deg = {camera[kRoll] / kDeg, sd(kRoll) / kDeg};
+  result.focal_px = {fixed_focal ? intrinsics.fx : focal, fixed_focal ? 0 : focal * sd(kLogFocal),
+                     fixed_focal ? 0 : focal * walkers_sd[kLogFocal]};
+  result.height_mm = {camera_height, camera_height * sd(kLogHeight), camera_height * walkers_sd[kLogHeight]};
+  result.tilt_deg = {camera[kTilt] / kDeg, sd(kTilt) / kDeg, walkers_sd[kTilt] / kDeg};
+  result.roll_deg = {camera[kRoll] / kDeg, sd(kRoll) / kDeg, walkers_sd[kRoll] / kDeg};
   for (int w = 0; w < walkers; ++w) result.walker_heights_mm.push_back(walker[w * kWalkerParameters + kWalkerHeight]);
   double line2 = 0, height2 = 0;
   for (size_t i = 0; i < pairs.size(); ++i) {

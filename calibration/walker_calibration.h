@@ -17,7 +17,9 @@
 //   per walker: (H_walker - person_height) / person_height_sd, lean_walker / lean_sd
 // with a Huber loss on the frames (a blob that merged with a shadow or a bag), and each
 // parameter's uncertainty from the fit's covariance at the minimum, scaled up by the
-// residuals' spread when they are wider than the stated noise.
+// residuals' spread when they are wider than the stated noise; beside it, how far the
+// camera moves with other walkers (a jackknife over groups of them: see
+// WalkerCalibrationOptions::jackknife_groups).
 //
 // The camera found is placed in a world of its own: above the world origin, looking along
 // +z (yaw and the position on the floor are not observable from one camera); y up, floor
@@ -83,6 +85,18 @@ struct WalkerCalibrationOptions {
   // each spanning under a metre of depth, systematic within-walk trends of 10-190 mm/m
   // outweighed the stature prior and put a 4761 mm camera at 3691 mm.
   double correlated_frames = 15;
+  // The fit's covariance holds only if every walker is the model's: upright, their head
+  // and foot points at the stated shares of their height, their errors independent of the
+  // others'. Real walkers are not (coats and skirts move the foot point, hair and hats
+  // the head's top, a bag the blob's middle), and each such walker pulls the camera its
+  // own way for all of their frames. So the walkers are also dealt round-robin into
+  // this many groups, the fit redone without each group (from the fit found), and the
+  // spread of those fits, scaled as a jackknife's ((G-1)/G times the sum of squares), is
+  // reported beside the covariance's (on vtest.avi three times it). Ten: the delete-a-
+  // group jackknife's usual count, each refit a tenth of the walkers short; with fewer
+  // walkers each is its own group, under 3 none (0: not measured). The refusals below
+  // read the covariance's, which says whether the walkers' geometry determines the camera.
+  int jackknife_groups = 10;
   // The user's calibration: its intrinsics and distortion are kept (only the pose fitted).
   std::optional<Camera> intrinsics;
   // Refused (InputError) when the walkers do not determine a parameter better than this
@@ -97,6 +111,9 @@ struct WalkerCalibrationOptions {
 struct Estimate {
   double value = 0;
   double sd = 0;  // one standard deviation
+  // How much the value moves with the walkers who happened to pass (0: not measured):
+  // a delete-a-group jackknife over them (WalkerCalibrationOptions::jackknife_groups).
+  double walkers_sd = 0;
 };
 
 struct WalkerCalibration {

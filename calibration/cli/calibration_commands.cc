@@ -117,19 +117,34 @@ void CheckOutFolder(const std::string& out) {
 namespace {
 
 // One camera's calibration as found, with each number's uncertainty.
+// ", +- S with other walkers" (the jackknife's spread, WalkerCalibrationOptions), or nothing.
+std::string WithOtherWalkers(const Estimate& e, int decimals) {
+  if (e.walkers_sd <= 0) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, ", +- %.*f with other walkers", decimals, e.walkers_sd);
+  return text;
+}
+
 void PrintWalkerCalibration(const WalkerCalibration& found, int width, const std::string& intrinsics) {
   const double fov = 2 * std::atan(width / 2.0 / found.focal_px.value) * 180 / std::acos(-1.0);
   if (!intrinsics.empty()) {
     std::printf("focal length  %.1f px (kept from %s, with its lens distortion)\n", found.focal_px.value,
                 intrinsics.c_str());
   } else {
-    std::printf("focal length  %.1f +- %.1f px (horizontal field of view %.1f degrees; principal point at the image "
+    std::printf("focal length  %.1f +- %.1f px%s (horizontal field of view %.1f degrees; principal point at the image "
                 "centre, no lens distortion assumed: give --camera for a chessboard's)\n",
-                found.focal_px.value, found.focal_px.sd, fov);
+                found.focal_px.value, found.focal_px.sd, WithOtherWalkers(found.focal_px, 1).c_str(), fov);
   }
-  std::printf("height        %.0f +- %.0f mm above the floor\n", found.height_mm.value, found.height_mm.sd);
-  std::printf("tilt          %.2f +- %.2f degrees down\n", found.tilt_deg.value, found.tilt_deg.sd);
-  std::printf("roll          %.2f +- %.2f degrees\n", found.roll_deg.value, found.roll_deg.sd);
+  std::printf("height        %.0f +- %.0f mm above the floor%s\n", found.height_mm.value, found.height_mm.sd,
+              WithOtherWalkers(found.height_mm, 0).c_str());
+  std::printf("tilt          %.2f +- %.2f degrees down%s\n", found.tilt_deg.value, found.tilt_deg.sd,
+              WithOtherWalkers(found.tilt_deg, 2).c_str());
+  std::printf("roll          %.2f +- %.2f degrees%s\n", found.roll_deg.value, found.roll_deg.sd,
+              WithOtherWalkers(found.roll_deg, 2).c_str());
+  if (found.height_mm.walkers_sd > 0) {
+    std::printf("(+- the fit's standard deviation, taking every walker for the model's upright person; with other "
+                "walkers: how far the camera moves as groups of them are left out in turn, a jackknife)\n");
+  }
   std::printf("fit: heads %.1f px RMS off their feet's vertical, %.0f mm RMS around their walker's height\n",
               found.rms_line_px, found.rms_height_mm);
   std::string heights;

@@ -59,9 +59,12 @@ inline bool SilhouetteTop(const Camera& camera, const Eigen::Vector3d& top, Eige
 // head leaning forward along the walk by 2-6 degrees, the points given noise of `noise_px`;
 // points outside the image are dropped, as a blob touching the edge would be. Walker w
 // starts at frame w * stagger (0: frames, one after another), numbered w * 7 + 3.
+// `foot_share_spread`: each walker's foot point is at its own share of their height,
+// drawn uniformly within 0.15 +- it (a coat or a skirt moves the legs' lowest 30%), which
+// the calibration, taking 0.15 for everyone, does not know.
 inline std::vector<HeadFoot> Observe(const Camera& camera, const std::vector<Walk>& walks, int frames,
                                      double noise_px, unsigned seed, double* mean_height = nullptr,
-                                     int stagger = 0) {
+                                     int stagger = 0, double foot_share_spread = 0) {
   std::mt19937 people(seed), pixels(seed + 1000);
   std::normal_distribution<double> stature(1700, 90), noise(0, noise_px);
   std::uniform_real_distribution<double> lean_deg(2, 6);
@@ -72,6 +75,8 @@ inline std::vector<HeadFoot> Observe(const Camera& camera, const std::vector<Wal
     sum += height;
     const Eigen::Vector3d lean =
         (walks[w].to - walks[w].from).normalized() * height * std::tan(lean_deg(people) * kDeg);
+    const double foot_share =
+        0.15 + (foot_share_spread > 0 ? std::uniform_real_distribution<double>(-1, 1)(people) * foot_share_spread : 0);
     for (int i = 0; i < frames; ++i) {
       const Eigen::Vector3d foot = walks[w].from + (walks[w].to - walks[w].from) * i / (frames - 1.0);
       HeadFoot point;
@@ -79,7 +84,7 @@ inline std::vector<HeadFoot> Observe(const Camera& camera, const std::vector<Wal
       point.frame = static_cast<int>(w) * (stagger > 0 ? stagger : frames) + i;
       // The foot point: the centroid of the legs' lowest 30%, 15% of the height up
       // (WalkerCalibrationOptions::foot_share).
-      if (!camera.Project(foot + Eigen::Vector3d(0, 0.15 * height, 0), &point.foot_px) ||
+      if (!camera.Project(foot + Eigen::Vector3d(0, foot_share * height, 0), &point.foot_px) ||
           !SilhouetteTop(camera, foot + lean + Eigen::Vector3d(0, height, 0), &point.head_px))
         continue;
       auto inside = [&](const Eigen::Vector2d& p) {
