@@ -116,7 +116,6 @@ void CheckOutFolder(const std::string& out) {
 
 namespace {
 
-// One camera's calibration as found, with each number's uncertainty.
 // ", +- S with other walkers" (the jackknife's spread, WalkerCalibrationOptions), or nothing.
 std::string WithOtherWalkers(const Estimate& e, int decimals) {
   if (e.walkers_sd <= 0) return "";
@@ -124,6 +123,8 @@ std::string WithOtherWalkers(const Estimate& e, int decimals) {
   std::snprintf(text, sizeof text, ", +- %.*f with other walkers", decimals, e.walkers_sd);
   return text;
 }
+
+// One camera's calibration as found, with each number's uncertainty.
 
 void PrintWalkerCalibration(const WalkerCalibration& found, int width, const std::string& intrinsics) {
   const double fov = 2 * std::atan(width / 2.0 / found.focal_px.value) * 180 / std::acos(-1.0);
