@@ -1,6 +1,7 @@
 #include "prior/numerics/cholesky.h"
 
 #include <cmath>
+#include <utility>
 
 #include <lapacke.h>
 
@@ -9,6 +10,32 @@
 namespace jgpm {
 
 bool Cholesky::Compute(const Eigen::MatrixXd& k, double max_relative_jitter) {
+  return Factorise(k, max_relative_jitter, [this, &k](double jitter) {
+    factor_ = k;
+    factor_.diagonal().array() += jitter;
+  });
+}
+
+bool Cholesky::Compute(Eigen::MatrixXd&& k, double max_relative_jitter) {
+  Eigen::VectorXd diagonal;
+  bool first = true;
+  // dpotrf writes the lower triangle and the diagonal only: a retry restores K from the
+  // upper triangle and the diagonal kept here.
+  return Factorise(k, max_relative_jitter, [this, &k, &diagonal, &first](double jitter) {
+    if (first) {
+      factor_ = std::move(k);
+      diagonal = factor_.diagonal();
+      first = false;
+    } else {
+      for (Eigen::Index j = 0; j < factor_.cols(); ++j)
+        for (Eigen::Index i = j + 1; i < factor_.rows(); ++i) factor_(i, j) = factor_(j, i);
+    }
+    factor_.diagonal() = diagonal.array() + jitter;
+  });
+}
+
+bool Cholesky::Factorise(const Eigen::MatrixXd& k, double max_relative_jitter,
+                         const std::function<void(double)>& load) {
   JGPM_CHECK(k.rows() == k.cols());
   ok_ = false;
   jitter_ = 0;
@@ -24,8 +51,7 @@ bool Cholesky::Compute(const Eigen::MatrixXd& k, double max_relative_jitter) {
   }
   const double max_jitter = max_relative_jitter * mean_diagonal;
   for (double jitter = 0; jitter <= max_jitter; jitter = jitter == 0 ? 1e-9 * mean_diagonal : jitter * 10) {
-    factor_ = k;
-    factor_.diagonal().array() += jitter;
+    load(jitter);  // `k` may be gone from here on: it may now be factor_
     if (n == 0 || LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, factor_.data(), n) == 0) {
       jitter_ = jitter;
       ok_ = true;

@@ -7,6 +7,7 @@
 // because the gradient of ln|K| needs every entry of K^-1.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ class Cholesky {
   // jitter up to max_relative_jitter * mean(diag K) makes it positive definite; why() says
   // which.
   bool Compute(const Eigen::MatrixXd& k, double max_relative_jitter = 1e-2);
+  // The same in K's own storage, without a copy (for N = 1800, 26 MB fresh, 60 ms of page
+  // faults on our machines). K must be symmetric, both triangles: a retry with jitter
+  // restores its lower triangle from the upper one.
+  bool Compute(Eigen::MatrixXd&& k, double max_relative_jitter = 1e-2);
 
   bool ok() const { return ok_; }
   const std::string& why() const { return why_; }
@@ -46,6 +51,9 @@ class Cholesky {
   Eigen::MatrixXd Inverse() const;
 
  private:
+  // The checks and the jitter loop; `load(jitter)` puts K + jitter I into factor_.
+  bool Factorise(const Eigen::MatrixXd& k, double max_relative_jitter, const std::function<void(double)>& load);
+
   Eigen::MatrixXd factor_;  // lower triangle holds L
   double jitter_ = 0;
   bool ok_ = false;

@@ -1,6 +1,7 @@
 #include "prior/numerics/kernel.h"
 
 #include "io/base/error.h"
+#include "prior/numerics/large_matrix.h"
 #include "prior/numerics/rbf_row.h"
 
 namespace jgpm {
@@ -12,11 +13,10 @@ Kernel::Kernel(Kind kind, const Eigen::VectorXd& log_params)
 
 Eigen::MatrixXd Kernel::RbfPart(const Eigen::MatrixXd& x) const { return RbfCross(x, x); }
 
-Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const {
-  Eigen::MatrixXd k = rbf;
-  if (kind_ != Kind::kRbf) k.noalias() += linear_variance() * x * x.transpose();
-  k.diagonal().array() += noise_variance();
-  return k;
+Eigen::MatrixXd Kernel::Matrix(const Eigen::MatrixXd& x, Eigen::MatrixXd rbf) const {
+  if (kind_ != Kind::kRbf) rbf.noalias() += linear_variance() * x * x.transpose();
+  rbf.diagonal().array() += noise_variance();
+  return rbf;
 }
 
 Eigen::VectorXd Kernel::Cross(const Eigen::MatrixXd& x, const Eigen::Vector3d& x_star) const {
@@ -59,8 +59,11 @@ void Kernel::AddGradient(const Eigen::MatrixXd& x, const Eigen::MatrixXd& g,
 Eigen::MatrixXd Kernel::RbfCross(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) const {
   JGPM_CHECK(a.cols() == 3 && b.cols() == 3);
   const int n = static_cast<int>(a.rows());
-  if (kind_ == Kind::kLinear) return Eigen::MatrixXd::Zero(n, b.rows());
-  Eigen::MatrixXd k(n, b.rows());
+  Eigen::MatrixXd k = LargeMatrix(n, b.rows());
+  if (kind_ == Kind::kLinear) {
+    k.setZero();
+    return k;
+  }
   for (int j = 0; j < b.rows(); ++j) {
     const Eigen::Vector3d q = b.row(j).transpose();
     RbfRow(a.data(), n, q.data(), signal_variance(), inverse_width(), k.col(j).data());

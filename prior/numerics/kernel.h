@@ -37,8 +37,9 @@ class Kernel {
   // shared by Matrix and AddGradient (its N^2 exponentials are a large part of an
   // evaluation).
   Eigen::MatrixXd RbfPart(const Eigen::MatrixXd& x) const;
-  // K(X) for the rows of X, noise included on the diagonal; `rbf` is RbfPart(x).
-  Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x, const Eigen::MatrixXd& rbf) const;
+  // K(X) for the rows of X, noise included on the diagonal; `rbf` is RbfPart(x), taken by
+  // value so that a temporary becomes K without a copy (26 MB fresh for N = 1800).
+  Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x, Eigen::MatrixXd rbf) const;
   Eigen::MatrixXd Matrix(const Eigen::MatrixXd& x) const { return Matrix(x, RbfPart(x)); }
   // k(x_i, x*) for every row x_i of X (no noise: x* is a new point).
   Eigen::VectorXd Cross(const Eigen::MatrixXd& x, const Eigen::Vector3d& x_star) const;

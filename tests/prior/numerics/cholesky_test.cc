@@ -66,6 +66,38 @@ TEST(Cholesky, RefusesNanAndIndefinite) {
   EXPECT_NE(chol.why().find("not positive definite"), std::string::npos) << chol.why();
 }
 
+// Factorising in K's own storage gives what the copying path gives, bit for bit, also
+// when jitter must be retried (each retry restores K from its upper triangle) and when it
+// refuses.
+TEST(Cholesky, InPlaceIsTheCopyingPath) {
+  // 40 points on 10 sites (each 4 times), RBF with noise e^-40: nearly singular. And a
+  // matrix with an eigenvalue of -1e-8 (mean diagonal 1/6): jitter 1.7e-10 and 1.7e-9 fail,
+  // 1.7e-8 holds, so K is restored twice.
+  Eigen::MatrixXd x(40, 3);
+  for (int i = 0; i < 40; ++i) x.row(i) = Eigen::Vector3d(i % 10, 0.5 * (i % 10), 0.0) * 0.3;
+  const Kernel rbf(Kernel::Kind::kRbf, Eigen::Vector3d(0.0, 0.0, 40.0));
+  const Eigen::MatrixXd negative = Eigen::MatrixXd::Constant(6, 6, 1.0 / 6) - 1e-8 * Eigen::MatrixXd::Identity(6, 6);
+  Eigen::MatrixXd indefinite = Eigen::MatrixXd::Identity(3, 3);
+  indefinite(0, 0) = -0.5;
+  Eigen::MatrixXd with_nan = Eigen::MatrixXd::Identity(3, 3);
+  with_nan(2, 2) = std::nan("");
+  const Eigen::MatrixXd spd = RandomSpd(64, 7);
+  for (const Eigen::MatrixXd& k : {spd, rbf.Matrix(x), negative, indefinite, with_nan}) {
+    Cholesky copying, in_place;
+    const bool ok = copying.Compute(k);
+    EXPECT_EQ(in_place.Compute(Eigen::MatrixXd(k)), ok);
+    EXPECT_EQ(in_place.why(), copying.why());
+    EXPECT_EQ(in_place.jitter(), copying.jitter());
+    if (!ok) continue;
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(k.rows(), 2);
+    EXPECT_EQ(in_place.Solve(b), copying.Solve(b));
+    EXPECT_EQ(in_place.LogDeterminant(), copying.LogDeterminant());
+  }
+  Cholesky chol;
+  ASSERT_TRUE(chol.Compute(Eigen::MatrixXd(negative)));
+  EXPECT_GT(chol.jitter(), 1e-8 / 6);  // the retries were exercised: past the first two jitters
+}
+
 // The oracle: greedy selection written out, each step's residual diagonal
 // K_ii - K_iS K_SS^-1 K_Si from a fresh solve against the chosen rows.
 std::vector<int> BruteForceGreedy(const Eigen::MatrixXd& k, int count) {
