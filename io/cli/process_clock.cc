@@ -17,21 +17,17 @@ std::optional<double> SecondsSinceProcessStarted() {
   const size_t close = line.rfind(')');
   if (close == std::string::npos) return std::nullopt;
   std::istringstream fields(line.substr(close + 1));
-  std::string field;
-  for (int k = 3; k <= 22 && fields >> field; ++k) {
-    if (k < 22) continue;
-    const long ticks_per_second = sysconf(_SC_CLK_TCK);
-    timespec now{};
-    if (ticks_per_second <= 0 || clock_gettime(CLOCK_BOOTTIME, &now) != 0) return std::nullopt;
-    try {
-      const double started = std::stod(field) / static_cast<double>(ticks_per_second);
-      const double seconds = static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec) - started;
-      if (seconds >= 0) return seconds;
-    } catch (const std::exception&) {
-    }
+  std::string skipped;
+  for (int field = 3; field < 22; ++field) fields >> skipped;
+  unsigned long long started_ticks = 0;  // field 22: the start time, in clock ticks since boot
+  const long ticks_per_second = sysconf(_SC_CLK_TCK);
+  timespec now{};
+  if (!(fields >> started_ticks) || ticks_per_second <= 0 || clock_gettime(CLOCK_BOOTTIME, &now) != 0)
     return std::nullopt;
-  }
-  return std::nullopt;
+  const double seconds = static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec) -
+                         static_cast<double>(started_ticks) / static_cast<double>(ticks_per_second);
+  if (seconds < 0) return std::nullopt;
+  return seconds;
 }
 
 }  // namespace jgpm

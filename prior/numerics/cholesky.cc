@@ -17,19 +17,14 @@ bool Cholesky::Compute(const Eigen::MatrixXd& k, double max_relative_jitter) {
 }
 
 bool Cholesky::Compute(Eigen::MatrixXd&& k, double max_relative_jitter) {
-  Eigen::VectorXd diagonal;
-  bool first = true;
-  // dpotrf writes the lower triangle and the diagonal only: a retry restores K from the
-  // upper triangle and the diagonal kept here.
-  return Factorise(k, max_relative_jitter, [this, &k, &diagonal, &first](double jitter) {
-    if (first) {
-      factor_ = std::move(k);
-      diagonal = factor_.diagonal();
-      first = false;
-    } else {
-      for (Eigen::Index j = 0; j < factor_.cols(); ++j)
-        for (Eigen::Index i = j + 1; i < factor_.rows(); ++i) factor_(i, j) = factor_(j, i);
-    }
+  factor_ = std::move(k);
+  const Eigen::VectorXd diagonal = factor_.diagonal();
+  return Factorise(factor_, max_relative_jitter, [this, &diagonal](double jitter) {
+    if (jitter == 0) return;  // the first try: factor_ is K as given
+    // dpotrf wrote the lower triangle and the diagonal only: K comes back from the upper
+    // triangle and the diagonal kept above.
+    for (Eigen::Index j = 0; j < factor_.cols(); ++j)
+      for (Eigen::Index i = j + 1; i < factor_.rows(); ++i) factor_(i, j) = factor_(j, i);
     factor_.diagonal() = diagonal.array() + jitter;
   });
 }
@@ -51,7 +46,7 @@ bool Cholesky::Factorise(const Eigen::MatrixXd& k, double max_relative_jitter,
   }
   const double max_jitter = max_relative_jitter * mean_diagonal;
   for (double jitter = 0; jitter <= max_jitter; jitter = jitter == 0 ? 1e-9 * mean_diagonal : jitter * 10) {
-    load(jitter);  // `k` may be gone from here on: it may now be factor_
+    load(jitter);  // `k` may be factor_ itself: read before the first load only
     if (n == 0 || LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, factor_.data(), n) == 0) {
       jitter_ = jitter;
       ok_ = true;
