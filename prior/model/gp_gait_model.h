@@ -39,6 +39,9 @@ class GpGaitModel : public GaitModel {
   // `slot`: N x T.
   Eigen::Map<Eigen::MatrixXd> Cross(const Eigen::Ref<const Eigen::MatrixXd>& xs, ModelWorkspace* workspace,
                                     int slot) const;
+  // The dynamics GP (x_in_, dynamics_, dynamics_chol_, b_) from the training latents;
+  // InputError naming `source`.
+  void BuildDynamics(const std::string& source);
 
   Kernel kernel_;
   Cholesky chol_;

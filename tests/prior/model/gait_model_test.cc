@@ -126,6 +126,28 @@ TEST(GaitModel, DynamicsStepFollowsTheTrainingSequences) {
   EXPECT_LT(error, 0.2 * spacing);  // predicts the next point far better than standing still
 }
 
+// The dynamics GP is built on a thread of its own while the mapping's is built: a model
+// built again from its data predicts the same numbers, and an error found on that thread
+// reaches the caller as one InputError naming the model.
+TEST(GaitModel, DynamicsBuiltBesideTheMappingAreTheSameAndReportTheirErrors) {
+  const auto model = Train(ModelKind::kGpdm);
+  ASSERT_TRUE(model->HasDynamics());
+  const auto again = GaitModel::Create(model->data(), "again.json");
+  for (int i = 0; i < model->NumPoints(); i += 11) {
+    const Eigen::Vector3d x = model->latent().row(i).transpose();
+    EXPECT_EQ(again->NextLatent(x, nullptr), model->NextLatent(x, nullptr)) << i;
+    Eigen::VectorXd a, b;
+    double va, vb;
+    model->Predict(x, &a, &va);
+    again->Predict(x, &b, &vb);
+    EXPECT_EQ(a, b) << i;
+    EXPECT_EQ(va, vb) << i;
+  }
+  GaitModelData overflowing = model->data();
+  overflowing.params.log_alpha.setConstant(800);  // finite, but exp() of it is not
+  test::ExpectInputError([&] { GaitModel::Create(overflowing, "broken.json"); }, {"broken.json", "dynamics kernel"});
+}
+
 TEST(GaitModel, ManifoldCoordinatesRoundTrip) {
   const auto model = Train(ModelKind::kMljgpmTorus);
   ASSERT_TRUE(model->HasManifold());
