@@ -70,6 +70,8 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_streak < 1) problem = "mirror_streak must be >= 1";
   else if (mirror_every < 0) problem = "mirror_every must be >= 0 (0: never)";
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
+  else if (legs_trial_frames < 0) problem = "legs_trial_frames must be >= 0 (0: never)";
+  else if (!(legs_trial_margin >= 0)) problem = "legs_trial_margin must be >= 0";
   else if (turn_every < 0) problem = "turn_every must be >= 0 (0: never)";
   else if (reverse_every < 0) problem = "reverse_every must be >= 0 (0: never)";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
@@ -367,6 +369,8 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   unstarted_.clear();
   // A start that knows the pose (--init truth) knows which leg is forward.
   frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
+  legs_trial_due_ = true;
+  other_legs_.reset();
   bad_frames_ = 0;
   out_of_view_ = 0;
   last_drawn_.clear();
@@ -733,8 +737,87 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       filter_->Transform([&](double* s) { state_model_->Pace(speed, share, s); });
     }
   }
+  if (legs_by_phase_ && tries_other_legs_) TryOtherLegs(frame, &out);
   finish(&out);
   return out;
+}
+
+namespace {
+
+double TotalCost(const TrackedFrame& frame) {
+  double cost = 0;
+  for (const CameraScore& c : frame.cameras) cost += c.cost;
+  return cost;
+}
+
+}  // namespace
+
+void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
+  const bool tracked = out->status == TrackStatus::kTracked && bad_frames_ == 0;
+  if (!other_legs_) {
+    if (!legs_trial_due_ || options_.legs_trial_frames == 0 || !tracked ||
+        frames_since_start_ < options_.mirror_frames)
+      return;
+    legs_trial_due_ = false;
+    TrackerOptions options = options_;
+    options.annealing.layers = std::max(1, options_.annealing.layers / 2);
+    other_legs_ = Follower(options);
+    other_legs_->filter_->Shift(0, 0.5);
+    other_legs_->mirror_evidence_ = 0;
+    other_legs_->mirror_streak_ = 0;
+    other_legs_->last_time_s_ = frame.time_s;
+    other_legs_->last_good_time_s_ = last_good_time_s_;
+    other_legs_->travel_ = travel_;
+    other_legs_frames_ = 0;
+    own_cost_ = other_legs_cost_ = 0;
+    return;
+  }
+  TrackedFrame other = other_legs_->Step(frame);
+  out->evaluations += other.evaluations;
+  // Either lost or explaining badly: no fair comparison; the trial ends as it is.
+  if (!tracked || other.status != TrackStatus::kTracked || other_legs_->bad_frames_ > 0) {
+    other_legs_.reset();
+    return;
+  }
+  // The second tracker began from particles fitted to the other order, moved: the first
+  // half of its trial is it settling, and only the second half is compared.
+  const int judged = options_.legs_trial_frames - options_.legs_trial_frames / 2;
+  if (++other_legs_frames_ > options_.legs_trial_frames - judged) {
+    own_cost_ += TotalCost(*out);
+    other_legs_cost_ += TotalCost(other);
+  }
+  if (other_legs_frames_ < options_.legs_trial_frames) return;
+  if ((own_cost_ - other_legs_cost_) / judged > options_.legs_trial_margin) {
+    filter_->Reset(other_legs_->filter_->particles());
+    shape_ = other_legs_->shape_;
+    ApplyBuild();
+    alignment_ = other_legs_->alignment_;
+    if (refiner_ && other_legs_->refiner_) refiner_->ContinueFrom(*other_legs_->refiner_);
+    travel_ = other_legs_->travel_;
+    mirror_evidence_ = 0;
+    mirror_streak_ = 0;
+    other.evaluations = out->evaluations;
+    *out = std::move(other);
+  }
+  other_legs_.reset();
+}
+
+std::unique_ptr<Tracker> Tracker::Follower(const TrackerOptions& options) const {
+  auto follower = std::make_unique<Tracker>(model_, cameras_, options, table_);
+  follower->tries_other_legs_ = false;
+  follower->filter_->Reset(filter_->particles());
+  follower->shape_ = shape_;
+  follower->ApplyBuild();
+  follower->alignment_ = alignment_;
+  if (refiner_ && follower->refiner_) follower->refiner_->ContinueFrom(*refiner_);
+  follower->started_ = true;
+  follower->frames_since_start_ = frames_since_start_;
+  follower->mirror_evidence_ = mirror_evidence_;
+  follower->mirror_streak_ = mirror_streak_;
+  follower->held_size_ = held_size_;
+  follower->next_choice_ = next_choice_;
+  follower->last_drawn_ = last_drawn_;
+  return follower;
 }
 
 std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) const {
@@ -744,22 +827,11 @@ std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) co
   // start's second costs 1.19x its first pass on `07_01-4cam` instead of 1.30x.
   TrackerOptions back_options = options_;
   back_options.annealing.layers = std::max(1, options_.annealing.layers / 2);
-  Tracker back(model_, cameras_, back_options, table_);
+  const std::unique_ptr<Tracker> follower = Follower(back_options);
+  Tracker& back = *follower;
   const int rate = state_model_->placement().rate;
   const auto turn = [rate](double* s) { s[rate] = -s[rate]; };
-  back.filter_->Reset(filter_->particles());
   back.filter_->Transform(turn);
-  back.shape_ = shape_;
-  back.ApplyBuild();
-  back.alignment_ = alignment_;
-  if (refiner_ && back.refiner_) back.refiner_->ContinueFrom(*refiner_);
-  back.started_ = true;
-  back.frames_since_start_ = frames_since_start_;
-  back.mirror_evidence_ = mirror_evidence_;
-  back.mirror_streak_ = mirror_streak_;
-  back.held_size_ = held_size_;
-  back.next_choice_ = next_choice_;
-  back.last_drawn_ = last_drawn_;
   // Time runs on forwards for the second tracker: each frame's time and index mirrored
   // about the last frame's.
   const Frame& last = frames.back();
