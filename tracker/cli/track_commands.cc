@@ -38,6 +38,7 @@ struct TrackArguments {
   bool no_latent_prior = false;
   bool no_body_shape = false;
   bool no_back_over = false;
+  bool no_legs_trial = false;
   bool no_overlay = false;
   bool show = false;
   int threads = 0;
@@ -130,6 +131,7 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.annealing.latent_prior = !a.no_latent_prior;
   a.job.tracker.shape.enabled = !a.no_body_shape;
   if (a.no_back_over) a.job.tracker.start_backwards_s = 0;
+  if (a.no_legs_trial) a.job.tracker.legs_trial_frames = 0;
   a.job.working.enabled = !a.full_resolution;
   a.job.source.clip_occluders = !a.no_clip_occluders;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -270,6 +272,7 @@ struct BenchArguments {
   bool no_budget = false;
   bool no_body_shape = false;
   bool no_back_over = false;
+  bool no_legs_trial = false;
   int threads = 0;
   std::string adapt = "none";
   TrackBenchOptions bench;
@@ -288,6 +291,7 @@ void RunBench(BenchArguments a) {
   a.bench.tracker.refinement.adapt_posture = a.adapt == "posture";
   a.bench.tracker.shape.enabled = !a.no_body_shape;
   if (a.no_back_over) a.bench.tracker.start_backwards_s = 0;
+  if (a.no_legs_trial) a.bench.tracker.legs_trial_frames = 0;
   {
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
@@ -361,6 +365,9 @@ constexpr const char* kNoBackOverHelp =
     "do not go back over each start, or with --people all each birth (its first second tracked again "
     "backwards once the track is sure: Tracker::BackOver); its frames then cost one pass and are given out as "
     "they come";
+constexpr const char* kNoLegsTrialHelp =
+    "do not give each start's other leg order a trial (tracked alongside for 10 frames from the particles half "
+    "a walking cycle on, taken when it fits better: TrackerOptions::legs_trial_frames)";
 constexpr const char* kAdaptHelp =
     "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
     "a state under the training subjects' posture prior (measured no better on the suite)";
@@ -485,6 +492,7 @@ void AddTrackCommands(CLI::App& app) {
   track->add_flag("--no-latent-prior", a->no_latent_prior, "do not weigh particles by p(x|M)");
   track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track->add_flag("--no-back-over", a->no_back_over, kNoBackOverHelp);
+  track->add_flag("--no-legs-trial", a->no_legs_trial, kNoLegsTrialHelp);
   track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
@@ -531,6 +539,7 @@ void AddTrackBench(CLI::App* bench) {
   track_bench->add_flag("--no-budget", b->no_budget, "skip the budget curve");
   track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track_bench->add_flag("--no-back-over", b->no_back_over, kNoBackOverHelp);
+  track_bench->add_flag("--no-legs-trial", b->no_legs_trial, kNoLegsTrialHelp);
   track_bench->callback([b] { RunBench(*b); });
 }
 
