@@ -759,9 +759,7 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
         frames_since_start_ < options_.mirror_frames)
       return;
     legs_trial_due_ = false;
-    TrackerOptions options = options_;
-    options.annealing.layers = std::max(1, options_.annealing.layers / 2);
-    other_legs_ = Follower(options);
+    other_legs_ = Follower();
     other_legs_->filter_->Shift(0, 0.5);
     other_legs_->mirror_evidence_ = 0;
     other_legs_->mirror_streak_ = 0;
@@ -802,7 +800,9 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
   other_legs_.reset();
 }
 
-std::unique_ptr<Tracker> Tracker::Follower(const TrackerOptions& options) const {
+std::unique_ptr<Tracker> Tracker::Follower() const {
+  TrackerOptions options = options_;
+  options.annealing.layers = std::max(1, options_.annealing.layers / 2);
   auto follower = std::make_unique<Tracker>(model_, cameras_, options, table_);
   follower->tries_other_legs_ = false;
   follower->filter_->Reset(filter_->particles());
@@ -825,9 +825,7 @@ std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) co
   // The second pass starts from particles that have found the person: it searches with
   // half the layers. On the tuning clips the same (94.2 mm either way, 4 seeds), and a
   // start's second costs 1.19x its first pass on `07_01-4cam` instead of 1.30x.
-  TrackerOptions back_options = options_;
-  back_options.annealing.layers = std::max(1, options_.annealing.layers / 2);
-  const std::unique_ptr<Tracker> follower = Follower(back_options);
+  const std::unique_ptr<Tracker> follower = Follower();
   Tracker& back = *follower;
   const int rate = state_model_->placement().rate;
   const auto turn = [rate](double* s) { s[rate] = -s[rate]; };

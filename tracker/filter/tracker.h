@@ -75,11 +75,11 @@
 // legs_trial_frames frames, and replaces this one when, over the second half of them (the
 // first are it settling from particles fitted to the other order), it explains the masks
 // better by more than legs_trial_margin a frame: the mirror switch's own evidence rate,
-// mirror_margin / mirror_streak (0.1 cost units over 5 frames). That margin is absolute: a relative one (10%, 20%) turned an occluded
-// monocular tuning walk whose costs are tiny (0.005-0.01 a frame; 69.6 -> 102.7 / 85.3
-// mm). legs_trial_frames is a third of a walking cycle at 30 fps, in which the legs go
-// from passing each other to apart, where perspective tells them; no tuning clip's trial
-// turned the legs, so it is not tuned. (The skirted walk, 4 seeds: 76.2 -> 59.1 mm; seed
+// mirror_margin / mirror_streak (0.1 cost units over 5 frames). That margin is absolute:
+// a relative one (10%, 20%) turned an occluded monocular tuning walk whose costs are tiny
+// (0.005-0.01 a frame; 69.6 -> 102.7 / 85.3 mm). legs_trial_frames is a third of a
+// walking cycle at 30 fps, in which the legs go from passing each other to apart, where
+// perspective tells them; no tuning clip's trial turned the legs, so it is not tuned. (The skirted walk, 4 seeds: 76.2 -> 59.1 mm; seed
 // 2 136.6 -> 68.4, turned at frame 39; the clean, tuning and realism suites unchanged;
 // about 5% more evaluations on a 3-second clip, one trial per start.)
 //
@@ -405,9 +405,9 @@ class Tracker {
   // The build learnt so far, to the body, the state model and the placers.
   void ApplyBuild();
   // A second tracker in this one's state (particles, build, views' alignment, search,
-  // start), with `options`, that tries no other leg order itself: for BackOver and
-  // TryOtherLegs.
-  std::unique_ptr<Tracker> Follower(const TrackerOptions& options) const;
+  // start) with half the annealing layers (its particles have found the person), that
+  // tries no other leg order itself: for BackOver and TryOtherLegs.
+  std::unique_ptr<Tracker> Follower() const;
   // After a frame tracked (`out`): the other leg order's trial (TrackerOptions::
   // legs_trial_frames) begun, stepped on `frame` or decided; when it wins, this tracker
   // takes its state and `out` its estimate.
