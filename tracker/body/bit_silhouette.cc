@@ -15,6 +15,7 @@ BitMask::BitMask(int width, int height)
 BitMask BitMask::FromMat(const cv::Mat& mask, cv::Rect region) {
   BitMask bits(mask.cols, mask.rows);
   region &= cv::Rect(0, 0, mask.cols, mask.rows);
+  if (region.empty()) return bits;
   for (int v = region.y; v < region.y + region.height; ++v) {
     const uint8_t* m = mask.ptr<uint8_t>(v);
     uint64_t* out = &bits.bits_[static_cast<size_t>(v) * bits.words_];
@@ -22,8 +23,7 @@ BitMask BitMask::FromMat(const cv::Mat& mask, cv::Rect region) {
       if (m[u]) out[u >> 6] |= uint64_t{1} << (u & 63);
     }
   }
-  bits.first_row_ = region.empty() ? 0 : region.y;
-  bits.last_row_ = region.empty() ? 0 : region.y + region.height;
+  bits.Mark(region.y, region.y + region.height - 1, region.x, region.x + region.width - 1);
   return bits;
 }
 
@@ -32,40 +32,47 @@ void BitMask::SetSpan(int v, int x0, int x1) {
   x0 = std::max(x0, 0);
   x1 = std::min(x1, width_ - 1);
   if (x1 < x0) return;
-  MarkRows(v, v);
+  Mark(v, v, x0, x1);
   SetSpanUnchecked(v, x0, x1);
 }
 
 void BitMask::Clear() {
-  std::fill(bits_.begin() + static_cast<size_t>(first_row_) * words_, bits_.begin() + static_cast<size_t>(last_row_) * words_,
-            0);
-  first_row_ = last_row_ = 0;
+  for (int v = first_row_; v < last_row_; ++v) {
+    uint64_t* r = &bits_[static_cast<size_t>(v) * words_];
+    std::fill(r + first_word_, r + last_word_, 0);
+  }
+  first_row_ = last_row_ = first_word_ = last_word_ = 0;
 }
 
 int BitMask::Count() const {
   int n = 0;
-  for (size_t i = static_cast<size_t>(first_row_) * words_; i < static_cast<size_t>(last_row_) * words_; ++i) {
-    n += std::popcount(bits_[i]);
+  for (int v = first_row_; v < last_row_; ++v) {
+    const uint64_t* r = row(v);
+    for (int k = first_word_; k < last_word_; ++k) n += std::popcount(r[k]);
   }
   return n;
 }
 
-void BitMask::DilatedRow(int v, uint64_t* out) const {
-  for (int k = 0; k < words_; ++k) {
-    uint64_t x = bits_[static_cast<size_t>(v) * words_ + k];
-    if (v > 0) x |= bits_[static_cast<size_t>(v - 1) * words_ + k];
-    if (v + 1 < height_) x |= bits_[static_cast<size_t>(v + 1) * words_ + k];
-    out[k] = x;
-  }
+void BitMask::DilatedRow(int v, int w0, int w1, uint64_t* out) const {
+  if (w1 <= w0) return;
+  const uint64_t* r = row(v);
+  // Each word of the row with the rows above and below; the sideways spread needs the
+  // words either side of [w0, w1) too.
+  auto vertical = [&](int k) {
+    if (k < 0 || k >= words_) return uint64_t{0};
+    uint64_t x = r[k];
+    if (v > 0) x |= r[k - words_];
+    if (v + 1 < height_) x |= r[k + words_];
+    return x;
+  };
   // Sideways: each bit also sets its neighbours, carried across words (bit u is pixel u).
-  uint64_t carry_in = 0;
-  for (int k = 0; k < words_; ++k) {
-    const uint64_t x = out[k];
-    const uint64_t next = k + 1 < words_ ? out[k + 1] : 0;
-    out[k] = x | (x << 1) | carry_in | (x >> 1) | (next << 63);
-    carry_in = x >> 63;
+  uint64_t previous = vertical(w0 - 1), x = vertical(w0);
+  for (int k = w0; k < w1; ++k) {
+    const uint64_t next = vertical(k + 1);
+    out[k] = x | (x << 1) | (previous >> 63) | (x >> 1) | (next << 63);
+    previous = x, x = next;
   }
-  if (width_ % 64) out[words_ - 1] &= ~uint64_t{0} >> (64 - width_ % 64);
+  if (w1 == words_ && width_ % 64) out[words_ - 1] &= ~uint64_t{0} >> (64 - width_ % 64);
 }
 
 void BitMask::Or(const BitMask& other) {
@@ -73,17 +80,18 @@ void BitMask::Or(const BitMask& other) {
   for (int v = other.first_row_; v < other.last_row_; ++v) {
     uint64_t* out = &bits_[static_cast<size_t>(v) * words_];
     const uint64_t* in = other.row(v);
-    for (int w = 0; w < words_; ++w) out[w] |= in[w];
+    for (int w = other.first_word_; w < other.last_word_; ++w) out[w] |= in[w];
   }
-  MarkRows(other.first_row_, other.last_row_ - 1);
+  Mark(other.first_row_, other.last_row_ - 1, other.first_word_ * 64, std::min(width_, other.last_word_ * 64) - 1);
 }
 
 void BitMask::DilateInto(BitMask* out) const {
   *out = BitMask(width_, height_);
   if (first_row_ == last_row_) return;
-  out->first_row_ = std::max(0, first_row_ - 1);
-  out->last_row_ = std::min(height_, last_row_ + 1);
-  for (int v = out->first_row_; v < out->last_row_; ++v) DilatedRow(v, &out->bits_[static_cast<size_t>(v) * words_]);
+  const int v0 = std::max(0, first_row_ - 1), v1 = std::min(height_, last_row_ + 1);
+  const int w0 = std::max(0, first_word_ - 1), w1 = std::min(words_, last_word_ + 1);
+  for (int v = v0; v < v1; ++v) DilatedRow(v, w0, w1, &out->bits_[static_cast<size_t>(v) * words_]);
+  out->Mark(v0, v1 - 1, w0 * 64, std::min(width_, w1 * 64) - 1);
 }
 
 cv::Mat BitMask::ToMat() const {
@@ -113,6 +121,27 @@ inline int FloorInt(double x) {
 }
 
 }  // namespace
+
+void SinCos(double x, double* sin_x, double* cos_x) {
+  const double y = 0.25 * x, y2 = y * y;
+  // Horner's rule on y^2; the first terms left out are y^17 / 17! and y^16 / 16!, under
+  // 2e-15 at |y| <= pi / 4.
+  double s = -1.0 / 1307674368000;  // -1 / 15!
+  for (const double k : {1.0 / 6227020800, -1.0 / 39916800, 1.0 / 362880, -1.0 / 5040, 1.0 / 120, -1.0 / 6, 1.0}) {
+    s = s * y2 + k;
+  }
+  s *= y;
+  double c = -1.0 / 87178291200;  // -1 / 14!
+  for (const double k : {1.0 / 479001600, -1.0 / 3628800, 1.0 / 40320, -1.0 / 720, 1.0 / 24, -1.0 / 2, 1.0}) {
+    c = c * y2 + k;
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double s2 = 2 * s * c;
+    c = (c - s) * (c + s);
+    s = s2;
+  }
+  *sin_x = s, *cos_x = c;
+}
 
 void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* mask,
                                  std::vector<Eigen::Vector2f>* outline, double outline_step_px) const {
@@ -174,7 +203,7 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
     }
     const double ra2 = c.ra * c.ra, rb2 = c.rb * c.rb;
     const int last_column = mask->width() - 1;
-    int drawn_first = mask->height(), drawn_last = -1;
+    int drawn_first = mask->height(), drawn_last = -1, drawn_left = mask->width(), drawn_right = -1;
     // Row v's span of each end's ellipse: m00 x^2 + 2 m01 x dy + m11 dy^2 <= r^2 in x
     // (relative to its centre, dy = v - its row), i.e. x = -slope dy +- sqrt(curve dy^2 +
     // r^2 / m00): as short a chain of dependent operations per row as a circle's.
@@ -204,8 +233,9 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
       if (x1 < x0) continue;
       mask->SetSpanUnchecked(v, x0, x1);
       drawn_first = std::min(drawn_first, v), drawn_last = v;
+      drawn_left = std::min(drawn_left, x0), drawn_right = std::max(drawn_right, x1);
     }
-    if (drawn_last >= 0) mask->MarkRows(drawn_first, drawn_last);
+    if (drawn_last >= 0) mask->Mark(drawn_first, drawn_last, drawn_left, drawn_right);
     if (outline) {
       auto segment = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
         const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / outline_step_px)));
@@ -221,7 +251,8 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
       auto arc = [&](const Eigen::Vector2d& centre, double radius, const Eigen::Vector2d& start, double span) {
         const int steps =
             std::max(2, static_cast<int>(std::ceil(std::abs(span) * radius * c.stretch / outline_step_px)));
-        const double cs = std::cos(span / steps), sn = std::sin(span / steps);
+        double cs, sn;
+        SinCos(span / steps, &sn, &cs);
         const Eigen::Matrix2d turn = stretch_map * (Eigen::Matrix2d() << cs, -sn, sn, cs).finished() * squeeze_map;
         const Eigen::Vector2d base = c.Image(centre);
         Eigen::Vector2d offset = stretch_map * (radius * start);

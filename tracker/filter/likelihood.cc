@@ -9,17 +9,21 @@
 namespace jgpm {
 namespace {
 
-// |S| and |S n M| over rows [first, last) of packed rows; M may be null. Compiled for the
-// POPCNT instruction too (jgpm's baseline x86-64 lacks it; every x86-64 CPU since 2008 has
-// it), picked at load time, as prior/numerics/rbf_row.h does for its vector width.
+// |S|, |S n M| and |S n grow(M)| over `rows` rows of `words` words, `stride` words apart.
+// Compiled for the POPCNT instruction too (jgpm's baseline x86-64 lacks it; every x86-64
+// CPU since 2008 has it), picked at load time, as prior/numerics/rbf_row.h does for its
+// vector width.
 __attribute__((target_clones("popcnt", "default"))) void CountBits(const uint64_t* s, const uint64_t* m,
-                                                                   const uint64_t* grown_m, int words, int* model,
-                                                                   int* overlap, int* inside_grown) {
+                                                                   const uint64_t* grown_m, int rows, int words,
+                                                                   int stride, int* model, int* overlap,
+                                                                   int* inside_grown) {
   int a = 0, b = 0, c = 0;
-  for (int k = 0; k < words; ++k) {
-    a += __builtin_popcountll(s[k]);
-    b += __builtin_popcountll(s[k] & m[k]);
-    c += __builtin_popcountll(s[k] & grown_m[k]);
+  for (int v = 0; v < rows; ++v, s += stride, m += stride, grown_m += stride) {
+    for (int k = 0; k < words; ++k) {
+      a += __builtin_popcountll(s[k]);
+      b += __builtin_popcountll(s[k] & m[k]);
+      c += __builtin_popcountll(s[k] & grown_m[k]);
+    }
   }
   *model += a;
   *overlap += b;
@@ -88,13 +92,16 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     const bool observed = !o.empty();
     if (canvas.last_row() > canvas.first_row()) {
       if (observed) {
-        const int rows = canvas.last_row() - canvas.first_row();
-        CountBits(canvas.row(canvas.first_row()), o.region_bits().row(canvas.first_row()),
-                  o.region_bits_grown().row(canvas.first_row()), rows * words, &model, &overlap, &inside);
+        // Over the words the body touched, and for grow(S) a word either side.
+        const int w0 = canvas.first_word(), w1 = canvas.last_word();
+        const int v0 = canvas.first_row();
+        CountBits(canvas.row(v0) + w0, o.region_bits().row(v0) + w0, o.region_bits_grown().row(v0) + w0, rows_drawn,
+                  w1 - w0, words, &model, &overlap, &inside);
         w->grown_row.resize(words);
+        const int g0 = std::max(0, w0 - 1), g1 = std::min(words, w1 + 1);
         for (int v = std::max(0, canvas.first_row() - 1); v < std::min(canvas.height(), canvas.last_row() + 1); ++v) {
-          canvas.DilatedRow(v, w->grown_row.data());
-          explained += CountAnd(w->grown_row.data(), o.region_bits().row(v), words);
+          canvas.DilatedRow(v, g0, g1, w->grown_row.data());
+          explained += CountAnd(w->grown_row.data() + g0, o.region_bits().row(v) + g0, g1 - g0);
         }
       } else {
         model = canvas.Count();

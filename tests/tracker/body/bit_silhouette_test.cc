@@ -6,11 +6,14 @@
 // boundary may go either way.
 #include "tracker/body/bit_silhouette.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace jgpm {
 namespace {
@@ -94,9 +97,45 @@ TEST(BitSilhouette, SpansAreClippedToTheImage) {
   EXPECT_EQ(mask.first_row(), 1);
   EXPECT_EQ(mask.last_row(), 2);
   mask.SetSpanUnchecked(2, 63, 64);
-  mask.MarkRows(2, 2);
+  mask.Mark(2, 2, 63, 64);
   EXPECT_EQ(mask.Count(), 72);
   EXPECT_EQ(mask.last_row(), 3);
+}
+
+TEST(BitSilhouette, SinCosMatchesLibmUpToPi) {
+  double worst = 0;
+  for (int i = -2000; i <= 2000; ++i) {
+    const double x = std::numbers::pi * i / 2000;
+    double s, c;
+    SinCos(x, &s, &c);
+    worst = std::max({worst, std::abs(s - std::sin(x)), std::abs(c - std::cos(x))});
+  }
+  EXPECT_LT(worst, 1e-13);
+}
+
+// Counting and clearing use the box of words a mask was drawn in: a span at either end of
+// a row, then the grown mask against a per-pixel dilation.
+TEST(BitSilhouette, TheTouchedWordsHoldEveryPixelAndDilateLikeOpenCv) {
+  BitMask mask(200, 6);
+  mask.SetSpan(2, 0, 0);
+  mask.SetSpan(3, 127, 128);
+  EXPECT_EQ(mask.first_word(), 0);
+  EXPECT_EQ(mask.last_word(), 3);
+  mask.Clear();
+  mask.SetSpan(1, 64, 64);
+  mask.SetSpan(4, 191, 199);
+  EXPECT_EQ(mask.first_word(), 1);
+  EXPECT_EQ(mask.last_word(), 4);
+  EXPECT_EQ(mask.Count(), 10);
+  BitMask grown;
+  mask.DilateInto(&grown);
+  cv::Mat expected;
+  cv::dilate(mask.ToMat(), expected, cv::Mat::ones(3, 3, CV_8U));
+  EXPECT_EQ(cv::countNonZero(grown.ToMat() != expected), 0);
+  EXPECT_EQ(grown.first_word(), 0);  // pixel 64's neighbour 63 is in word 0
+  mask.Clear();
+  EXPECT_EQ(mask.Count(), 0);
+  EXPECT_EQ(cv::countNonZero(mask.ToMat()), 0);
 }
 
 }  // namespace
