@@ -31,6 +31,7 @@
 #include <cstdlib>
 #include <memory>
 #include <random>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -176,6 +177,7 @@ struct Clip {
   std::vector<Frame> frames;                // observed masks and video images, from ClipFrameSource
   std::vector<cv::Mat> backgrounds;         // per camera: the empty room
   std::vector<std::vector<Capsule>> truth_bodies;  // per frame
+  std::vector<std::vector<Capsule>> tracking_bodies;  // the same, as the tracker draws them (BodyDetail::kTracking)
   std::vector<std::vector<cv::Rect>> regions;      // per frame and camera: around the walker
   std::vector<std::unique_ptr<SilhouetteLikelihood>> single;  // one camera each
   // Per frame and camera, that camera's observation alone (Cost takes one per camera of
@@ -231,7 +233,11 @@ const Clip& TheClip() {
       while (source.Next(&frame)) k.frames.push_back(frame);
     }
     const BodyModel body(k.skeleton, {}, "07.asf");
-    for (const ClipFrame& f : k.truth.frames) k.truth_bodies.push_back(body.Place(f.joints_mm));
+    const BodyModel tracking_body(k.skeleton, {.detail = BodyDetail::kTracking}, "07.asf");
+    for (const ClipFrame& f : k.truth.frames) {
+      k.truth_bodies.push_back(body.Place(f.joints_mm));
+      k.tracking_bodies.push_back(tracking_body.Place(f.joints_mm));
+    }
     for (const Camera& camera : k.truth.cameras)
       k.single.push_back(std::make_unique<SilhouetteLikelihood>(std::vector<Camera>{camera}));
     for (const Frame& f : k.frames) {
@@ -343,12 +349,14 @@ void BM_PlaceBodyWalker(benchmark::State& state) {
 BENCHMARK(BM_PlaceBodyWalker);
 
 // ---------------------------------------------------------------------------------------
-// Render: one body in one camera (cameras and frames taken in turn), 320x240. Arg 0: the
-// mask only; 1: with the outline points the likelihood asks for (every 3 px).
+// Render: one body in one camera (cameras and frames taken in turn), 320x240. First
+// argument 0: the mask only; 1: with the outline points the likelihood asks for (every 3
+// px). Second: 0 every part of the body model (30), 1 the tracker's 25 (BodyDetail).
 
 void BM_RenderBits(benchmark::State& state) {
   const Clip& clip = TheClip();
   const bool outline = state.range(0) != 0;
+  const auto& bodies = state.range(1) ? clip.tracking_bodies : clip.truth_bodies;
   std::vector<BitSilhouetteRenderer> renderers;
   std::vector<BitMask> masks;
   for (const Camera& camera : clip.truth.cameras) {
@@ -361,18 +369,18 @@ void BM_RenderBits(benchmark::State& state) {
   for (auto _ : state) {
     const int c = static_cast<int>(i % kCameras);
     points.clear();
-    renderers[c].Draw(clip.truth_bodies[(i / kCameras) % clip.truth_bodies.size()], &masks[c],
+    renderers[c].Draw(bodies[(i / kCameras) % bodies.size()], &masks[c],
                       outline ? &points : nullptr);
     benchmark::DoNotOptimize(masks[c].row(0));
     n += points.size();
     masks[c].Clear();
     ++i;
   }
-  state.SetLabel(outline ? "bit spans + outline" : "bit spans");
+  state.SetLabel(std::string(outline ? "bit spans + outline" : "bit spans") + (state.range(1) ? ", tracking body" : ", full body"));
   state.counters["outline_points"] = static_cast<double>(n) / std::max<double>(1, i);
   state.counters["per_particle_camera"] = TimePer(static_cast<double>(state.iterations()));
 }
-BENCHMARK(BM_RenderBits)->Arg(0)->Arg(1);
+BENCHMARK(BM_RenderBits)->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1});
 
 // The OpenCV-fill renderer in the particle filter's form: Draw into a kept-blank mask,
 // then blank what was drawn.

@@ -1,6 +1,9 @@
 #include "tracker/body/body_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <string_view>
 
 #include "io/base/error.h"
 
@@ -59,6 +62,16 @@ const PartSpec kParts[] = {
     {"rtoes", kShins, "rfoot", "rtoes", 32, 26, kShoes},
 };
 
+// BodyDetail::kTracking (body_model.h): a chain drawn as its first part, reaching to
+// `to` with radius `radius_to_mm` there (the chain's last radius), and the parts left out.
+struct Merge {
+  const char* part;
+  const char* to;
+  double radius_to_mm;
+};
+const Merge kTrackingMerges[] = {{"lowerneck", "upperneck", 48}, {"lwrist", "lfingers", 22}, {"rwrist", "rfingers", 22}};
+const std::string_view kTrackingLeftOut[] = {"upperneck", "lhand", "rhand", "lfingers", "rfingers"};
+
 }  // namespace
 
 bool BodyModelOptions::Check(std::string* why) const {
@@ -81,7 +94,16 @@ BodyModel::BodyModel(const Skeleton& skeleton, const BodyModelOptions& options,
                                   "', which the skeleton lacks");
     return index;  // Kinematics column b is the end of bone b; the root's is its position
   };
-  for (const PartSpec& spec : kParts) {
+  const bool tracking = options.detail == BodyDetail::kTracking;
+  for (PartSpec spec : kParts) {
+    if (tracking) {
+      if (std::find(std::begin(kTrackingLeftOut), std::end(kTrackingLeftOut), spec.name) != std::end(kTrackingLeftOut)) {
+        continue;
+      }
+      for (const Merge& merge : kTrackingMerges) {
+        if (spec.name == std::string_view(merge.part)) spec.to = merge.to, spec.radius_to_mm = merge.radius_to_mm;
+      }
+    }
     BodyPart part;
     part.name = spec.name;
     part.region = spec.region;

@@ -57,9 +57,22 @@ struct Capsule {
   double radius_to_mm = 0;
 };
 
+// How finely the body is cut into parts. kFull: all 30 parts (body_model.cc; what clips are
+// rendered with). kTracking: what the tracker draws for every particle and camera, where a
+// part costs about the same whatever its size. The rule: a chain of parts 1-4 px across at
+// the tracker's working resolution (a walker 80-200 px tall, 9-21 mm a pixel) that is
+// nearly straight is drawn as one part: each hand (the forearm's wrist end, the hand, the
+// fingers) and the neck. The thumbs are as small but stick out from the hands to the
+// front, one of the few cues to which way a walker faces: without them a walker facing away
+// from the particles was come round to in 3-23 frames or not at all (tracker_test, seeds
+// 1-8: 6 7 23 6 3 4 9 never), with them in 1-10 (4 10 7 8 1 2 9 10; the full body 5 3 10 6 1
+// 4 5 9). 25 parts instead of 30.
+enum class BodyDetail { kFull, kTracking };
+
 struct BodyModelOptions {
   // Multiplies every default radius (1: an average adult; ~0.85 slim, ~1.2 broad).
   double width_scale = 1.0;
+  BodyDetail detail = BodyDetail::kFull;
 
   bool Check(std::string* why) const;
 };

@@ -39,6 +39,7 @@ struct TrackArguments {
   bool no_body_shape = false;
   bool no_back_over = false;
   bool no_legs_trial = false;
+  bool full_body = false;
   bool no_overlay = false;
   bool show = false;
   int threads = 0;
@@ -132,6 +133,7 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.shape.enabled = !a.no_body_shape;
   if (a.no_back_over) a.job.tracker.start_backwards_s = 0;
   if (a.no_legs_trial) a.job.tracker.legs_trial_frames = 0;
+  if (a.full_body) a.job.tracker.body_detail = BodyDetail::kFull;
   a.job.working.enabled = !a.full_resolution;
   a.job.source.clip_occluders = !a.no_clip_occluders;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -273,6 +275,7 @@ struct BenchArguments {
   bool no_body_shape = false;
   bool no_back_over = false;
   bool no_legs_trial = false;
+  bool full_body = false;
   int threads = 0;
   std::string adapt = "none";
   TrackBenchOptions bench;
@@ -292,6 +295,7 @@ void RunBench(BenchArguments a) {
   a.bench.tracker.shape.enabled = !a.no_body_shape;
   if (a.no_back_over) a.bench.tracker.start_backwards_s = 0;
   if (a.no_legs_trial) a.bench.tracker.legs_trial_frames = 0;
+  if (a.full_body) a.bench.tracker.body_detail = BodyDetail::kFull;
   {
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
@@ -368,6 +372,9 @@ constexpr const char* kNoBackOverHelp =
 constexpr const char* kNoLegsTrialHelp =
     "do not give each start's other leg order a trial (tracked alongside for 10 frames from the particles half "
     "a walking cycle on, taken when it fits better: TrackerOptions::legs_trial_frames)";
+constexpr const char* kFullBodyHelp =
+    "draw all 30 parts of the body model for every particle, as clips are rendered, instead of the "
+    "tracker's 25 (each hand and the neck one part: BodyDetail::kTracking in body_model.h)";
 constexpr const char* kAdaptHelp =
     "none: the refinement starts from a running mean of its deviations; posture: the person's posture offset is "
     "a state under the training subjects' posture prior (measured no better on the suite)";
@@ -493,6 +500,7 @@ void AddTrackCommands(CLI::App& app) {
   track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track->add_flag("--no-back-over", a->no_back_over, kNoBackOverHelp);
   track->add_flag("--no-legs-trial", a->no_legs_trial, kNoLegsTrialHelp);
+  track->add_flag("--full-body", a->full_body, kFullBodyHelp);
   track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
   track->add_option("--max-frames", a->job.source.max_frames, "track at most this many frames (0: all)")
@@ -540,6 +548,7 @@ void AddTrackBench(CLI::App* bench) {
   track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track_bench->add_flag("--no-back-over", b->no_back_over, kNoBackOverHelp);
   track_bench->add_flag("--no-legs-trial", b->no_legs_trial, kNoLegsTrialHelp);
+  track_bench->add_flag("--full-body", b->full_body, kFullBodyHelp);
   track_bench->callback([b] { RunBench(*b); });
 }
 

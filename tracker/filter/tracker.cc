@@ -106,7 +106,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
       cameras_(cameras),
       options_(options),
       pool_(options.threads),
-      body_(model.skeleton(), {}, "the model's skeleton"),
+      body_(model.skeleton(), {.detail = options.body_detail}, "the model's skeleton"),
       likelihood_(cameras, options.likelihood),
       placer_(model.skeleton()),
       alignment_(cameras, options.alignment),

@@ -139,6 +139,7 @@ struct TrackerOptions {
   RefinementOptions refinement;   // after the search, in joint-angle space (not for joint-space)
   ViewAlignmentOptions alignment; // each camera's residual calibration error, learnt
   BodyShapeOptions shape;         // the person's build, region by region, learnt
+  BodyDetail body_detail = BodyDetail::kTracking;  // the parts drawn (body_model.h)
   StateSpace space = StateSpace::kModel;
   bool known_size = false;        // the model's skeleton is the subject's own (jgpm track
                                   // --asf): size 1, neither estimated nor refined
