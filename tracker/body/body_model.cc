@@ -65,11 +65,12 @@ const PartSpec kParts[] = {
 // BodyDetail::kTracking (body_model.h): a chain drawn as its first part, reaching to
 // `to` with radius `radius_to_mm` there (the chain's last radius), and the parts left out.
 struct Merge {
-  const char* part;
+  std::string_view part;
   const char* to;
   double radius_to_mm;
 };
-const Merge kTrackingMerges[] = {{"lowerneck", "upperneck", 48}, {"lwrist", "lfingers", 22}, {"rwrist", "rfingers", 22}};
+const Merge kTrackingMerges[] = {
+    {"lowerneck", "upperneck", 48}, {"lwrist", "lfingers", 22}, {"rwrist", "rfingers", 22}};
 const std::string_view kTrackingLeftOut[] = {"upperneck", "lhand", "rhand", "lfingers", "rfingers"};
 
 }  // namespace
@@ -97,11 +98,9 @@ BodyModel::BodyModel(const Skeleton& skeleton, const BodyModelOptions& options,
   const bool tracking = options.detail == BodyDetail::kTracking;
   for (PartSpec spec : kParts) {
     if (tracking) {
-      if (std::find(std::begin(kTrackingLeftOut), std::end(kTrackingLeftOut), spec.name) != std::end(kTrackingLeftOut)) {
-        continue;
-      }
+      if (std::ranges::find(kTrackingLeftOut, spec.name) != std::end(kTrackingLeftOut)) continue;
       for (const Merge& merge : kTrackingMerges) {
-        if (spec.name == std::string_view(merge.part)) spec.to = merge.to, spec.radius_to_mm = merge.radius_to_mm;
+        if (spec.name == merge.part) spec.to = merge.to, spec.radius_to_mm = merge.radius_to_mm;
       }
     }
     BodyPart part;

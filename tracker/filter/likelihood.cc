@@ -18,11 +18,12 @@ __attribute__((target_clones("popcnt", "default"))) void CountBits(const uint64_
                                                                    int stride, int* model, int* overlap,
                                                                    int* inside_grown) {
   int a = 0, b = 0, c = 0;
-  for (int v = 0; v < rows; ++v, s += stride, m += stride, grown_m += stride) {
+  for (int v = 0; v < rows; ++v) {
+    const size_t row = static_cast<size_t>(v) * stride;
     for (int k = 0; k < words; ++k) {
-      a += __builtin_popcountll(s[k]);
-      b += __builtin_popcountll(s[k] & m[k]);
-      c += __builtin_popcountll(s[k] & grown_m[k]);
+      a += __builtin_popcountll(s[row + k]);
+      b += __builtin_popcountll(s[row + k] & m[row + k]);
+      c += __builtin_popcountll(s[row + k] & grown_m[row + k]);
     }
   }
   *model += a;

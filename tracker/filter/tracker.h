@@ -79,9 +79,10 @@
 // a relative one (10%, 20%) turned an occluded monocular tuning walk whose costs are tiny
 // (0.005-0.01 a frame; 69.6 -> 102.7 / 85.3 mm). legs_trial_frames is a third of a
 // walking cycle at 30 fps, in which the legs go from passing each other to apart, where
-// perspective tells them; no tuning clip's trial turned the legs, so it is not tuned. (The skirted walk, 4 seeds: 76.2 -> 59.1 mm; seed
-// 2 136.6 -> 68.4, turned at frame 39; the clean, tuning and realism suites unchanged;
-// about 5% more evaluations on a 3-second clip, one trial per start.)
+// perspective tells them; no tuning clip's trial turned the legs, so it is not tuned.
+// (The skirted walk, 4 seeds: 76.2 -> 59.1 mm; seed 2 136.6 -> 68.4, turned at frame 39;
+// the clean, tuning and realism suites unchanged; about 5% more evaluations on a 3-second
+// clip, one trial per start.)
 //
 // Front and back look alike too, and a walker may go backwards (a negative cadence:
 // manifold_state.h). The turns to any heading (turn_every) look for the facing, and an
