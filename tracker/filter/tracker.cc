@@ -464,8 +464,10 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   const double dt = fresh_ ? 0.0 : frame.time_s - last_time_s_;
   if (!fresh_) filter_->Predict(dt, frame.index);
   if (legs_by_phase_ && !fresh_ && !frame.dropped && options_.mirror_every > 0 &&
-      frames_since_start_ < options_.mirror_frames)
+      frames_since_start_ < options_.mirror_frames) {
     filter_->Shift(0, 0.5, options_.mirror_every);
+    ++leg_order_epoch_;
+  }
   ++frames_since_start_;
   // Where the dynamics put the person now (walking on at their speed and heading).
   Eigen::Vector2d predicted_floor_mm;
@@ -616,6 +618,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     out.evaluations += 2;
     if (mirror_evidence_ > options_.mirror_margin && mirror_streak_ >= options_.mirror_streak) {
       filter_->Shift(0, 0.5);
+      ++leg_order_epoch_;
       out.state = mirror;
       mirror_evidence_ = 0;
       mirror_streak_ = 0;
@@ -752,6 +755,12 @@ double TotalCost(const TrackedFrame& frame) {
 
 }  // namespace
 
+bool Tracker::LegsSettled() const {
+  if (!legs_by_phase_ || !tries_other_legs_ || options_.legs_trial_frames == 0) return true;
+  if (other_legs_) return false;
+  return !legs_trial_due_ || frames_since_start_ >= options_.mirror_frames + options_.legs_trial_frames;
+}
+
 void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
   const bool tracked = out->status == TrackStatus::kTracked && bad_frames_ == 0;
   if (!other_legs_) {
@@ -787,6 +796,7 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
   if (other_legs_frames_ < options_.legs_trial_frames) return;
   if ((own_cost_ - other_legs_cost_) / judged > options_.legs_trial_margin) {
     filter_->Reset(other_legs_->filter_->particles());
+    ++leg_order_epoch_;
     shape_ = other_legs_->shape_;
     ApplyBuild();
     alignment_ = other_legs_->alignment_;
@@ -985,15 +995,39 @@ void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<E
     // Lost before the start was gone over: the frames stand as tracked. The next start (a
     // restart) is gone over in its turn.
     armed_ = tracker_->options().start_backwards_s > 0;
+    back_.reset();
     return Flush(ready);
   }
   if (!armed_) return Flush(ready);
-  if (frame.time_s - held_.front().frame.time_s < tracker_->options().start_backwards_s) return;
+  if (!back_) {
+    if (frame.time_s - held_.front().frame.time_s < tracker_->options().start_backwards_s) return;
+    back_epoch_ = tracker_->leg_order_epoch();
+    back_ = GoBackOver();
+  }
+  if (!tracker_->LegsSettled()) return;
+  if (tracker_->leg_order_epoch() != back_epoch_) {
+    // The legs were turned after it went back: its frames cost it, and the order it
+    // carried back is the other. Again from here.
+    back_->kept = false;
+    Apply(std::move(*back_));
+    back_ = GoBackOver();
+  }
+  Apply(std::move(*back_));
+  back_.reset();
+  armed_ = false;
+  Flush(ready);
+}
+
+StartBackOver::SecondPass StartBackOver::GoBackOver() {
   std::vector<Frame> frames;
   std::vector<TrackedFrame> first;
   for (const Estimate& e : held_) frames.push_back(e.frame), first.push_back(e.estimate);
-  SecondPass back = GoBack(*tracker_, frames, first);
-  const size_t from = held_.size() - 1 - back.estimates.size();
+  back_end_ = held_.size();
+  return GoBack(*tracker_, frames, first);
+}
+
+void StartBackOver::Apply(SecondPass back) {
+  const size_t from = back_end_ - 1 - back.estimates.size();
   for (size_t i = 0; i < back.estimates.size(); ++i) {
     TrackedFrame& forward = held_[from + i].estimate;
     if (back.kept) {
@@ -1003,8 +1037,6 @@ void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<E
       forward.evaluations = back.estimates[i].evaluations;
     }
   }
-  armed_ = false;
-  Flush(ready);
 }
 
 StartBackOver::SecondPass StartBackOver::GoBack(const Tracker& tracker, const std::vector<Frame>& frames,

@@ -106,6 +106,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -154,7 +155,9 @@ struct TrackerOptions {
   // (the occluded monocular clip's feet are behind a table for 20 frames: 190-520 mm off
   // at frame 0). 0: never; a live camera's frames are not held back for it. Chosen on the
   // realism tuning clips (4 seeds, bodytrack 14 mean absolute mm): never 96.3, 0.5 s 97.5,
-  // 1 s 94.2, 2 s 95.8.
+  // 1 s 94.2, 2 s 95.8. Its frames are given once the leg order is settled too (the
+  // trial below decided: Tracker::LegsSettled), and gone back over again from there when
+  // the order may have changed since (StartBackOver::Add).
   double start_backwards_s = 1.0;
   // The second pass is kept when its frames' mean IoU is at least the first pass's less
   // this (StartBackOver::KeepSecond): a track gone wrong by the frame it goes back from
@@ -327,6 +330,14 @@ class Tracker {
   const TrackerOptions& options() const { return options_; }
   const AnnealedFilter& filter() const { return *filter_; }
   const ViewAlignment& alignment() const { return alignment_; }
+  // Whether this start's leg order is as settled as it will get: its trial (legs_trial_frames)
+  // decided, or no longer to be had (none tried, or the start mirror_frames +
+  // legs_trial_frames frames old without one begun). StartBackOver gives a start's frames
+  // no earlier, so that they carry the order the trial chose.
+  bool LegsSettled() const;
+  // Changes whenever the leg order may have changed: each frame the start searches the
+  // other order (mirror_frames), each mirror switch, a trial won.
+  int leg_order_epoch() const { return leg_order_epoch_; }
 
   // Starts from a known guess (e.g. `--init truth`) at the next frame; `frame` (the first
   // frame tracked from it) keys the particles' random numbers, so that each restart draws
@@ -461,6 +472,7 @@ class Tracker {
   // while it runs, and both orders' costs summed over its frames so far.
   bool tries_other_legs_ = true;  // false for followers
   bool legs_trial_due_ = false;
+  int leg_order_epoch_ = 0;
   std::unique_ptr<Tracker> other_legs_;
   int other_legs_frames_ = 0;
   double own_cost_ = 0, other_legs_cost_ = 0;
@@ -483,7 +495,10 @@ class StartBackOver {
   };
   explicit StartBackOver(const Tracker* tracker);  // must outlive this
   // A frame and the tracker's Step of it, in order: appends to `ready` the frames whose
-  // estimates are final now, in order.
+  // estimates are final now, in order. A start's frames wait start_backwards_s and until
+  // its leg order is settled (Tracker::LegsSettled). The second pass goes back from the
+  // frame at start_backwards_s, and again from the last frame held when the leg order
+  // changed since (Tracker::leg_order_epoch): it carries back the order it starts from.
   void Add(const Frame& frame, TrackedFrame estimate, std::vector<Estimate>* ready);
   // Whatever is held, as it is (the frames ended before the start was gone over).
   void Flush(std::vector<Estimate>* ready);
@@ -504,9 +519,18 @@ class StartBackOver {
                            const std::vector<TrackedFrame>& first);
 
  private:
+  // Goes back over the frames held (GoBack), from the last; back_end_ their number.
+  SecondPass GoBackOver();
+  // The second pass's estimates over the first's (or, not kept, only its costs), from
+  // held_[back_end_ - 1] back.
+  void Apply(SecondPass back);
+
   const Tracker* tracker_;
   std::vector<Estimate> held_;  // since the start, not given yet
   bool armed_;                  // the frames held are a start's, not gone over yet
+  std::optional<SecondPass> back_;  // gone back over, waiting for the legs to settle
+  size_t back_end_ = 0;             // back_ went back from held_[back_end_ - 1]...
+  int back_epoch_ = 0;              // ...at this leg_order_epoch
 };
 
 // Tracks every frame of a source: the first options.start_frames frames are looked at to

@@ -103,7 +103,7 @@ class Tracker:
     def step(self, masks: Optional[list[_Array]]) -> list[dict]:
         """One frame's masks (one per camera, H x W, nonzero = person) or None; the frames tracked by this call
         (people='all': each {frame, time_s, people, born, ended}). people='one': a start's frames are given a
-        second after it, once it has been gone over again backwards."""
+        second or more after it (once its leg order is settled: about 1.33 s), gone over again backwards."""
     def finish(self) -> list[dict]:
         """The frames still held when the sequence ended (for the start, or for going back over it)."""
     @property

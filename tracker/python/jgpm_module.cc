@@ -691,7 +691,8 @@ PYBIND11_MODULE(jgpm, m) {
            "not seen. Returns the frames tracked by this call, as dicts (frame, time_s, status, joints_mm: joints "
            "x 3 or None, root_mm, heading_deg, size, pose_deg, ess, seconds): none while the first 15 frames are "
            "gathered (the start looks at them together), then, people='one', none until a second more has been "
-           "tracked and the start gone over again backwards, then every frame so far, then one per call.")
+           "tracked, the start's leg order settled (about 1.33 s) and the start gone over again backwards, then "
+           "every frame so far, then one per call.")
       .def("finish", &PyTracker::Finish,
            "The frames still held when the sequence ended (for the start, or for going back over it).")
       .def_property_readonly("joint_names",
