@@ -992,10 +992,9 @@ void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<E
   const bool lost = estimate.status == TrackStatus::kLost;
   held_.push_back({frame, std::move(estimate)});
   if (lost) {
-    // Lost before the start was gone over: the frames stand as tracked. The next start (a
-    // restart) is gone over in its turn.
+    // Lost before the start was gone over: the frames stand as tracked (or as gone back
+    // over while the legs settled). The next start (a restart) is gone over in its turn.
     armed_ = tracker_->options().start_backwards_s > 0;
-    back_.reset();
     return Flush(ready);
   }
   if (!armed_) return Flush(ready);
@@ -1006,14 +1005,12 @@ void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<E
   }
   if (!tracker_->LegsSettled()) return;
   if (tracker_->leg_order_epoch() != back_epoch_) {
-    // The legs were turned after it went back: its frames cost it, and the order it
-    // carried back is the other. Again from here.
+    // The legs may have turned since it went back, and it carried back the order it
+    // started from: its frames cost it, and it goes back again from here.
     back_->kept = false;
     Apply(std::move(*back_));
     back_ = GoBackOver();
   }
-  Apply(std::move(*back_));
-  back_.reset();
   armed_ = false;
   Flush(ready);
 }
@@ -1065,6 +1062,8 @@ bool StartBackOver::KeepSecond(const std::vector<TrackedFrame>& first, const std
 }
 
 void StartBackOver::Flush(std::vector<Estimate>* ready) {
+  if (back_) Apply(std::move(*back_));
+  back_.reset();
   for (Estimate& e : held_) ready->push_back(std::move(e));
   held_.clear();
 }

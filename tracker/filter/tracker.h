@@ -500,7 +500,8 @@ class StartBackOver {
   // frame at start_backwards_s, and again from the last frame held when the leg order
   // changed since (Tracker::leg_order_epoch): it carries back the order it starts from.
   void Add(const Frame& frame, TrackedFrame estimate, std::vector<Estimate>* ready);
-  // Whatever is held, as it is (the frames ended before the start was gone over).
+  // Whatever is held (the frames ended before the start was gone over), with the second
+  // pass where it went back while the legs settled.
   void Flush(std::vector<Estimate>* ready);
   // Whether the second pass's estimates of some frames replace the first's: their mean
   // IoU (TrackedFrame::MeanIou) is at least the first's less `margin`

@@ -353,6 +353,22 @@ TEST(StartBackOver, GoesBackFromWhereTheLegOrderIsSettled) {
     EXPECT_GT(ready[k].estimate.evaluations, forward_evaluations[k]) << "frame " << k << " not gone back over";
   }
   EXPECT_EQ(ready[given_at].estimate.evaluations, forward_evaluations[given_at]);  // where it went back from
+
+  // Frames that end while the legs settle are given gone back over as far as it went: at
+  // frame 3, before the first 3 (it was left out once it waited).
+  Tracker again(*f.loaded, f.truth.cameras, options);
+  ASSERT_TRUE(again.StartFromFrames({frames.begin(), frames.begin() + options.start_frames}));
+  StartBackOver short_hold(&again);
+  std::vector<StartBackOver::Estimate> given;
+  for (int k = 0; k <= 4; ++k) {
+    short_hold.Add(frames[k], again.Step(frames[k]), &given);
+    ASSERT_TRUE(given.empty()) << "frame " << k;
+  }
+  ASSERT_FALSE(again.LegsSettled());
+  short_hold.Flush(&given);
+  ASSERT_EQ(given.size(), 5u);
+  for (int k = 0; k < 3; ++k) EXPECT_GT(given[k].estimate.evaluations, forward_evaluations[k]) << "frame " << k;
+  for (int k = 3; k <= 4; ++k) EXPECT_EQ(given[k].estimate.evaluations, forward_evaluations[k]) << "frame " << k;
 }
 
 // Masks of a segmentation's specks only (the person gone): nobody is in view at once, not
