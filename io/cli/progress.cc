@@ -27,9 +27,11 @@ void ProgressLine::Update(double done, double total, const std::string& unit, co
   if (!tty_ && !shown_ && elapsed < quiet_s_) return;
   const bool open_ended = total < 0;  // a live source
   const bool last = !open_ended && done >= total;
+  if (last && shown_done_ >= total) return;  // the end is shown once, however many reports reach it
   if (shown_ && !last && std::chrono::duration<double>(now - last_).count() < interval_s_) return;
   last_ = now;
   shown_ = true;
+  shown_done_ = done;
   // The rate since the first report: what came before it (loading a model, building a
   // table, reading ahead) says nothing about how long the rest takes.
   const double counted_s = std::chrono::duration<double>(now - first_).count();

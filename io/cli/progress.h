@@ -4,7 +4,8 @@
 // `interval_s` seconds (the first and the last always). Into a log (not a terminal), a job
 // shows nothing in its first `quiet_s` seconds, so short runs and one-line errors stay
 // clean. The rate and the time left count from the first report, so the setup before it
-// does not count as work.
+// does not count as work. A job that reaches its total before it is done (a tracker giving
+// its held frames after the last is read) shows the end once.
 #pragma once
 
 #include <chrono>
@@ -33,6 +34,7 @@ class ProgressLine {
   bool shown_ = false;
   bool counting_ = false;  // the first report came: the rate counts from it
   double first_done_ = 0;
+  double shown_done_ = -1;  // the last report shown's
   std::chrono::steady_clock::time_point start_, last_, first_;
 };
 

@@ -162,20 +162,19 @@ void RunTrack(TrackArguments a) {
     std::fprintf(stderr, "jgpm: %s\n", text.c_str());
   };
   ProgressLine line("track");
-  int count = 0;
   interrupted = false;
   a.job.stop = &interrupted;
   std::signal(SIGINT, OnTrackInterrupt);
   std::signal(SIGTERM, OnTrackInterrupt);
   const bool people = a.job.people;
-  const TrackJobResult result = RunTrackJob(a.job, [&line, &count, people](const TrackedFrame& f, int total, int skipped) {
+  const TrackJobResult result = RunTrackJob(a.job, [&line, people](const TrackedFrame& f, int read, int total, int skipped) {
     char detail[160];
     // With --people all the frame is a summary: tracked when anyone in it is.
     int n = people ? std::snprintf(detail, sizeof(detail), "%s", f.status == TrackStatus::kTracked ? "someone tracked" : "nobody tracked")
                    : std::snprintf(detail, sizeof(detail), "%-9s ess %.2f  overlap %.2f",
                                    std::string(TrackStatusName(f.status)).c_str(), f.ess, f.MeanIou());
     if (total < 0) std::snprintf(detail + n, sizeof(detail) - n, "  latency %.0f ms  dropped %d", f.latency_ms, skipped);
-    line.Update(total < 0 ? ++count : f.index + 1, total, "frames", detail);
+    line.Update(read, total, "frames", detail);
   });
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);

@@ -72,9 +72,10 @@ struct TrackJobResult {
                                         // resolution's; run.cameras are the full-size ones)
 };
 
-// Each tracked frame, the number of frames (-1: live) and the frames the source has lost
-// so far (a live camera's drops).
-using TrackProgress = std::function<void(const TrackedFrame& frame, int total, int skipped)>;
+// Each tracked frame as it is given; the frames the tracker has read so far (a start's
+// frames are given after it has read on, so progress is counted in these); the number of
+// frames (-1: live); and the frames the source has lost so far (a live camera's drops).
+using TrackProgress = std::function<void(const TrackedFrame& frame, int read, int total, int skipped)>;
 
 // InputError naming the file or option for anything unusable, before any output is made.
 TrackJobResult RunTrackJob(const TrackJobOptions& options, const TrackProgress& progress = {});

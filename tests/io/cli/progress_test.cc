@@ -1,7 +1,8 @@
 // The progress line's rate and time left count from its first report, not from when the
 // line was made: a job whose setup takes long (loading a model, building a pose table)
 // used to show, at its first frame, a rate of a third of a frame a second and a time left
-// of hundreds of times the truth. Oracle: the sleeps between reports.
+// of hundreds of times the truth. Oracle: the sleeps between reports. The end is shown
+// once, however many reports reach it.
 #include "io/cli/progress.h"
 
 #include <chrono>
@@ -38,6 +39,21 @@ TEST(ProgressLine, CountsFromTheFirstReportNotTheSetup) {
   const double left = SecondsLeft(second);
   EXPECT_GT(left, 2) << second;
   EXPECT_LT(left, 20) << second;  // counted from construction: 99 / (2 / 0.65 s) = 32 s
+}
+
+// A tracker reads its last frame, then gives the frames it held: every one of those reports
+// is at the total, and the log showed the last line as many times.
+TEST(ProgressLine, ShowsTheEndOnce) {
+  testing::internal::CaptureStderr();
+  {
+    ProgressLine line("track", 0, 0);
+    line.Update(9, 10, "frames");
+    for (int held = 0; held < 3; ++held) line.Update(10, 10, "frames");
+  }
+  const std::string text = testing::internal::GetCapturedStderr();
+  size_t ends = 0;
+  for (size_t at = text.find("10/10"); at != std::string::npos; at = text.find("10/10", at + 1)) ++ends;
+  EXPECT_EQ(ends, 1u) << text;
 }
 
 }  // namespace
