@@ -468,6 +468,16 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     filter_->Shift(0, 0.5, options_.mirror_every);
     ++leg_order_epoch_;
   }
+  // Each estimate's leg order is judged against the last one's, and a trial's second
+  // tracker holds its particles to it.
+  const bool ordered = last_order_ && !fresh_;
+  if (holds_order_ && ordered) {
+    filter_->Transform([this, dt](double* s) {
+      if (!OtherLegOrder(s[0], *last_order_, dt)) return;
+      s[0] += 0.5;
+      state_model_->Normalise(s);
+    });
+  }
   ++frames_since_start_;
   // Where the dynamics put the person now (walking on at their speed and heading).
   Eigen::Vector2d predicted_floor_mm;
@@ -606,7 +616,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   out.state = report.estimate;
   out.ess = report.ess;
   out.evaluations = report.evaluations + (judged ? 1 : 0);
-  if (legs_by_phase_) {
+  if (legs_by_phase_ && !holds_order_) {
     // Which leg is forward: the estimate against itself half a cycle on.
     Eigen::VectorXd mirror = out.state;
     mirror[0] += 0.5;
@@ -623,6 +633,10 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       mirror_evidence_ = 0;
       mirror_streak_ = 0;
     }
+  }
+  if (legs_by_phase_) {
+    if (ordered && OtherLegOrder(out.state[0], *last_order_, dt)) ++leg_order_epoch_;
+    last_order_ = Eigen::Vector2d(out.state[0], out.state[state_model_->placement().rate]);
   }
   SetEstimate(&out);
   const PlacementIndex p = state_model_->placement();
@@ -745,6 +759,11 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   return out;
 }
 
+bool OtherLegOrder(double phase, const Eigen::Vector2d& last, double dt) {
+  const double off = phase - (last[0] + last[1] * dt);
+  return std::abs(off - std::round(off)) > 0.25;
+}
+
 namespace {
 
 double TotalCost(const TrackedFrame& frame) {
@@ -770,6 +789,8 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
     legs_trial_due_ = false;
     other_legs_ = Follower();
     other_legs_->filter_->Shift(0, 0.5);
+    other_legs_->holds_order_ = true;
+    other_legs_->last_order_ = Eigen::Vector2d(out->state[0] + 0.5, out->state[state_model_->placement().rate]);
     other_legs_->mirror_evidence_ = 0;
     other_legs_->mirror_streak_ = 0;
     other_legs_->last_time_s_ = frame.time_s;

@@ -82,7 +82,15 @@
 // perspective tells them; no tuning clip's trial turned the legs, so it is not tuned.
 // (The skirted walk, 4 seeds: 76.2 -> 59.1 mm; seed 2 136.6 -> 68.4, turned at frame 39;
 // the clean, tuning and realism suites unchanged; about 5% more evaluations on a 3-second
-// clip, one trial per start.)
+// clip, one trial per start.) The second tracker holds its order through the trial (its
+// particles kept within a quarter cycle of its last estimate walked on, no mirror switch:
+// OtherLegOrder): they are copied from this one's, which a start's search leaves holding
+// both orders, and on the coated 4-camera walk (seed 3) it went back to the first order
+// for 2 of the 5 frames judged, so the trial compared one order with itself (101.3 -> 47.0
+// mm). And an estimate that leaves the last one's order (this one's particles hold both
+// too) counts as a change of order (leg_order_epoch), so that StartBackOver goes back
+// again from the settled order (the held-out 2-camera walk, seed 4: with the hold alone,
+// legs swapped over frames 14-33 and 61.5 mm; with this, 39.0).
 //
 // Front and back look alike too, and a walker may go backwards (a negative cadence:
 // manifold_state.h). The turns to any heading (turn_every) look for the facing, and an
@@ -336,8 +344,12 @@ class Tracker {
   // no earlier, so that they carry the order the trial chose.
   bool LegsSettled() const;
   // Changes whenever the leg order may have changed: each frame the start searches the
-  // other order (mirror_frames), each mirror switch, a trial won.
+  // other order (mirror_frames), each mirror switch, a trial won, and each estimate whose
+  // phase is more than a quarter cycle off the last one's walked on (the particles hold
+  // both orders for a while after the search, and the other one may take over).
   int leg_order_epoch() const { return leg_order_epoch_; }
+  // The other leg order's second tracker while its trial runs (TryOtherLegs), else null.
+  const Tracker* legs_trial() const { return other_legs_.get(); }
 
   // Starts from a known guess (e.g. `--init truth`) at the next frame; `frame` (the first
   // frame tracked from it) keys the particles' random numbers, so that each restart draws
@@ -474,9 +486,19 @@ class Tracker {
   bool legs_trial_due_ = false;
   int leg_order_epoch_ = 0;
   std::unique_ptr<Tracker> other_legs_;
+  // The last estimate's phase and cadence (legs_by_phase_): where the next one's order is.
+  std::optional<Eigen::Vector2d> last_order_;
+  // A trial's second tracker holds its order: particles kept within a quarter cycle of
+  // last_order_ walked on, no mirror switch.
+  bool holds_order_ = false;
   int other_legs_frames_ = 0;
   double own_cost_ = 0, other_legs_cost_ = 0;
 };
+
+// Whether an estimate at `phase` (cycles) has the other leg order from one whose phase and
+// cadence (cycles/s) were `last`, `dt` seconds before: it is more than a quarter cycle off
+// `last` walked on. Half a cycle on swaps the legs; a quarter is half way to that.
+bool OtherLegOrder(double phase, const Eigen::Vector2d& last, double dt);
 
 // Reads a source's first `start_frames` frames, gives them to `start`, then every frame,
 // those first, to `step`, until the source ends or `stop` (may be empty) says so.
