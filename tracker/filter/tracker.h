@@ -71,7 +71,7 @@
 // held-out skirted 2-camera walk, seed 2: 0.151 against 0.216 a frame, where the right
 // order tracked from the truth costs 0.123). So after mirror_frames, once per start, the
 // other order is given a fair trial: a second tracker from this one's particles half a
-// cycle on (with half the layers, as a start's back-over) is tracked alongside for
+// cycle on (with all the annealing layers: below) is tracked alongside for
 // legs_trial_frames frames, and replaces this one when, over the second half of them (the
 // first are it settling from particles fitted to the other order), it explains the masks
 // better by more than legs_trial_margin a frame: the mirror switch's own evidence rate,
@@ -90,7 +90,11 @@
 // mm). And an estimate that leaves the last one's order (this one's particles hold both
 // too) counts as a change of order (leg_order_epoch), so that StartBackOver goes back
 // again from the settled order (the held-out 2-camera walk, seed 4: with the hold alone,
-// legs swapped over frames 14-33 and 61.5 mm; with this, 39.0).
+// legs swapped over frames 14-33 and 61.5 mm; with this, 39.0). The second tracker
+// anneals with all the layers, where a back-over has half: with half it fitted worse by
+// more than a coat's two orders differ, and the coat's seed 1 stayed swapped (138.0 mm)
+// although the right order, tracked from the truth, costs less in every part of the clip
+// (realism suite 90.5 -> 86.6 mm, the coat 68.2 -> 46.2; about 3.5% more evaluations).
 //
 // Front and back look alike too, and a walker may go backwards (a negative cadence:
 // manifold_state.h). The turns to any heading (turn_every) look for the facing, and an
@@ -430,9 +434,11 @@ class Tracker {
   // The build learnt so far, to the body, the state model and the placers.
   void ApplyBuild();
   // A second tracker in this one's state (particles, build, views' alignment, search,
-  // start) with half the annealing layers (its particles have found the person), that
-  // tries no other leg order itself: for BackOver and TryOtherLegs.
-  std::unique_ptr<Tracker> Follower() const;
+  // start) that tries no other leg order itself: for BackOver (with half the annealing
+  // layers: its particles have found the person) and TryOtherLegs (with all of them: a
+  // trial compares two fits, and with half the layers the second fitted worse by more
+  // than a coat's two orders differ).
+  std::unique_ptr<Tracker> Follower(bool half_layers) const;
   // After a frame tracked (`out`): the other leg order's trial (TrackerOptions::
   // legs_trial_frames) begun, stepped on `frame` or decided; when it wins, this tracker
   // takes its state and `out` its estimate.

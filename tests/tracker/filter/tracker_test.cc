@@ -366,7 +366,8 @@ TEST(Tracker, AnEstimateAQuarterCycleOffHasTheOtherLegOrder) {
 // The other order's trial compares two orders: its second tracker holds the order it
 // began in, although its particles are copied from the first's, which hold both after a
 // start's search, and the masks (legs joined, as by a skirt) do not choose. Without the
-// hold, seed 3's second tracker went back to the first's order during its trial.
+// hold, seed 3's second tracker went back to the first's order during its trial. And it
+// searches with all the first's annealing layers.
 TEST(Tracker, TheOtherLegOrdersTrialHoldsItsOrder) {
   const Fixture& f = Shared();
   TrackerOptions options;
@@ -394,6 +395,9 @@ TEST(Tracker, TheOtherLegOrdersTrialHoldsItsOrder) {
       last.reset();
       continue;
     }
+    // As hard a search as the first's: with half the layers it fitted worse than a coat's
+    // two orders differ, and lost trials the right order should have won.
+    EXPECT_EQ(trial->options().annealing.layers, options.annealing.layers);
     const Eigen::VectorXd estimate = trial->filter().Mean();
     if (last) {
       ++trial_frames;
