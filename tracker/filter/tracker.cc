@@ -791,8 +791,6 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
     other_legs_->filter_->Shift(0, 0.5);
     other_legs_->holds_order_ = true;
     other_legs_->last_order_ = Eigen::Vector2d(out->state[0] + 0.5, out->state[state_model_->placement().rate]);
-    other_legs_->mirror_evidence_ = 0;
-    other_legs_->mirror_streak_ = 0;
     other_legs_->last_time_s_ = frame.time_s;
     other_legs_->last_good_time_s_ = last_good_time_s_;
     other_legs_->travel_ = travel_;
