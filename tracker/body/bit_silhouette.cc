@@ -122,27 +122,6 @@ inline int FloorInt(double x) {
 
 }  // namespace
 
-void SinCos(double x, double* sin_x, double* cos_x) {
-  const double y = 0.25 * x, y2 = y * y;
-  // Horner's rule on y^2; the first terms left out are y^17 / 17! and y^16 / 16!, under
-  // 2e-15 at |y| <= pi / 4.
-  double s = -1.0 / 1307674368000;  // -1 / 15!
-  for (const double k : {1.0 / 6227020800, -1.0 / 39916800, 1.0 / 362880, -1.0 / 5040, 1.0 / 120, -1.0 / 6, 1.0}) {
-    s = s * y2 + k;
-  }
-  s *= y;
-  double c = -1.0 / 87178291200;  // -1 / 14!
-  for (const double k : {1.0 / 479001600, -1.0 / 3628800, 1.0 / 40320, -1.0 / 720, 1.0 / 24, -1.0 / 2, 1.0}) {
-    c = c * y2 + k;
-  }
-  for (int k = 0; k < 2; ++k) {
-    const double s2 = 2 * s * c;
-    c = (c - s) * (c + s);
-    s = s2;
-  }
-  *sin_x = s, *cos_x = c;
-}
-
 void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* mask,
                                  std::vector<Eigen::Vector2f>* outline, double outline_step_px) const {
   JGPM_CHECK(mask->width() == camera().width && mask->height() == camera().height);
@@ -180,25 +159,25 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
     const double half_height = c.stretch;
     const double inverse_m00 = 1 / m00;
     // Rows v0..v1 (clamped to the image; coordinates are bounded by the projector's culling,
-    // so the int conversions are defined). Each non-horizontal quad edge as x = x0 + (v -
-    // y0) * slope over [y0, y1], set up once per capsule (a horizontal edge's ends are
-    // also its neighbours' ends, so it adds nothing).
+    // so the int conversions are defined). The quad's two side edges, q0-q1 and q2-q3, as
+    // x = x0 + (v - y0) * slope over [y0, y1], set up once per capsule; its other two are
+    // chords of the end ellipses, inside them, so they add nothing to a row's span (nor
+    // does a horizontal side edge, whose ends are on the ellipses).
     const double top = std::min(c.a.y() - c.ra * half_height, c.b.y() - c.rb * half_height);
     const double bottom = std::max(c.a.y() + c.ra * half_height, c.b.y() + c.rb * half_height);
     const int v0 = std::max(0, CeilInt(top)), v1 = std::min(mask->height() - 1, FloorInt(bottom));
     if (v1 < v0) continue;
     struct Edge {
-      double y0, y1, x0, slope;
-    } edges[4];
-    int num_edges = 0;
+      double y0 = 1, y1 = 0, x0 = 0, slope = 0;  // y1 < y0: no row
+    } edges[2];
     if (quad) {
-      for (int e = 0; e < 4; ++e) {
-        const Eigen::Vector2d& p = q[e];
-        const Eigen::Vector2d& s = q[(e + 1) & 3];
+      for (int e = 0; e < 2; ++e) {
+        const Eigen::Vector2d& p = q[2 * e];
+        const Eigen::Vector2d& s = q[2 * e + 1];
         if (p.y() == s.y()) continue;
         const Eigen::Vector2d& lo = p.y() < s.y() ? p : s;
         const Eigen::Vector2d& hi = p.y() < s.y() ? s : p;
-        edges[num_edges++] = {lo.y(), hi.y(), lo.x(), (hi.x() - lo.x()) / (hi.y() - lo.y())};
+        edges[e] = {lo.y(), hi.y(), lo.x(), (hi.x() - lo.x()) / (hi.y() - lo.y())};
       }
     }
     const double ra2 = c.ra * c.ra, rb2 = c.rb * c.rb;
@@ -222,8 +201,7 @@ void BitSilhouetteRenderer::Draw(const std::vector<Capsule>& capsules, BitMask* 
         const double h = std::sqrt(hb2), x = bx - slope * db;
         left = std::min(left, x - h), right = std::max(right, x + h);
       }
-      for (int e = 0; e < num_edges; ++e) {
-        const Edge& edge = edges[e];
+      for (const Edge& edge : edges) {
         if (v < edge.y0 || v > edge.y1) continue;
         const double x = edge.x0 + (v - edge.y0) * edge.slope;
         left = std::min(left, x), right = std::max(right, x);
