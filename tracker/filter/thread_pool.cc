@@ -20,10 +20,10 @@ ThreadPool::~ThreadPool() {
 }
 
 void ThreadPool::Run(int worker) {
-  long seen = 0;
+  uint32_t seen = 0;
   for (;;) {
     const std::function<void(int, int, int)>* job;
-    int n;
+    int n, chunk;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
@@ -31,24 +31,37 @@ void ThreadPool::Run(int worker) {
       seen = generation_;
       job = job_;
       n = n_;
+      chunk = chunk_;
     }
-    Work(*job, n, worker);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (--pending_ == 0) done_.notify_one();
-    }
+    // `job` is called only for a chunk of call `seen` taken from next_, and that call
+    // waits for its chunks, so the function is still there.
+    Work(*job, n, chunk, seen, worker);
   }
 }
 
-void ThreadPool::Work(const std::function<void(int, int, int)>& fn, int n, int worker) {
-  try {
-    for (;;) {
-      const int begin = next_.fetch_add(chunk_, std::memory_order_relaxed);
-      if (begin >= n) return;
-      fn(begin, std::min(n, begin + chunk_), worker);
+void ThreadPool::Work(const std::function<void(int, int, int)>& fn, int n, int chunk, uint32_t generation,
+                      int worker) {
+  bool failed = false;
+  for (;;) {
+    uint64_t next = next_.load();
+    int begin;
+    do {
+      begin = static_cast<int>(next & 0xffffffffu);
+      if (next >> 32 != generation || begin >= n) return;
+    } while (!next_.compare_exchange_weak(next, next + chunk));
+    const int end = std::min(n, begin + chunk);
+    if (!failed) {
+      try {
+        fn(begin, end, worker);
+      } catch (...) {
+        errors_[worker] = std::current_exception();
+        failed = true;
+      }
     }
-  } catch (...) {
-    errors_[worker] = std::current_exception();
+    if (done_items_.fetch_add(end - begin) + (end - begin) == n) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_.notify_one();
+    }
   }
 }
 
@@ -57,22 +70,22 @@ void ThreadPool::For(int n, const std::function<void(int begin, int end, int wor
   const int parts = size();
   // Chunks of about a quarter of an even share: a worker whose items are cheap (bodies off
   // screen draw nothing) takes more of them.
-  chunk_ = std::max(1, n / (4 * parts));
-  next_.store(0, std::memory_order_relaxed);
-  if (parts > 1) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      job_ = &fn;
-      n_ = n;
-      pending_ = parts - 1;
-      ++generation_;
-    }
-    wake_.notify_all();
+  const int chunk = std::max(1, n / (4 * parts));
+  uint32_t generation;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    generation = ++generation_;
+    job_ = &fn;
+    n_ = n;
+    chunk_ = chunk;
+    done_items_.store(0);
+    next_.store(uint64_t{generation} << 32);
   }
-  Work(fn, n, 0);
-  if (parts > 1) {
+  if (parts > 1 && n > chunk) wake_.notify_all();
+  Work(fn, n, chunk, generation, 0);
+  {
     std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return pending_ == 0; });
+    done_.wait(lock, [&] { return done_items_.load() >= n; });
   }
   for (const std::exception_ptr& e : errors_)
     if (e) std::rethrow_exception(e);

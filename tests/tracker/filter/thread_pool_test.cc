@@ -45,5 +45,24 @@ TEST(ThreadPool, AnItemsExceptionReachesTheCallerAndThePoolGoesOn) {
   EXPECT_EQ(sum.load(), 4950);
 }
 
+// A call returns once its items are done, while a worker woken late may still hold it: that
+// worker must never run an old call's function (gone with its caller's frame) on a newer
+// call's items. Many short calls back to back, each function with its own locals.
+TEST(ThreadPool, BackToBackCallsEachRunTheirOwnFunction) {
+  ThreadPool pool(2);
+  std::atomic<int> current{-1}, foreign{0};
+  for (int call = 0; call < 20000; ++call) {
+    const int n = 1 + call % 9;
+    std::vector<std::atomic<int>> seen(n);
+    current = call;
+    pool.For(n, [&, call](int begin, int end, int) {
+      foreign += call != current;
+      for (int i = begin; i < end; ++i) ++seen[i];
+    });
+    for (int i = 0; i < n; ++i) ASSERT_EQ(seen[i].load(), 1) << "call " << call << ", item " << i;
+    ASSERT_EQ(foreign.load(), 0) << "call " << call;
+  }
+}
+
 }  // namespace
 }  // namespace jgpm
