@@ -62,18 +62,7 @@ void AppendArc(const ImageCapsule& capsule, const Eigen::Vector2d& centre, doubl
 }  // namespace
 
 CapsuleProjector::CapsuleProjector(const Camera& camera)
-    : camera_(camera), focal_px_(0.5 * (camera.fx + camera.fy)), max_radius_(MaxMonotoneRadius(camera.distortion)) {
-  for (size_t i = 0; i < k_.size() && i < camera.distortion.size(); ++i) k_[i] = camera.distortion[i];
-}
-
-inline Eigen::Vector2d CapsuleProjector::Pixel(const Eigen::Vector2d& normalised) const {
-  const double x = normalised.x(), y = normalised.y();
-  const double r2 = x * x + y * y;
-  const double radial = (1 + r2 * (k_[0] + r2 * (k_[1] + r2 * k_[4]))) / (1 + r2 * (k_[5] + r2 * (k_[6] + r2 * k_[7])));
-  const double xd = x * radial + 2 * k_[2] * x * y + k_[3] * (r2 + 2 * x * x);
-  const double yd = y * radial + k_[2] * (r2 + 2 * y * y) + 2 * k_[3] * x * y;
-  return {camera_.fx * xd + camera_.cx, camera_.fy * yd + camera_.cy};
-}
+    : camera_(camera), focal_px_(0.5 * (camera.fx + camera.fy)), max_radius_(MaxMonotoneRadius(camera.distortion)) {}
 
 bool CapsuleProjector::Project(const Capsule& capsule, ImageCapsule* image) const {
   const Eigen::Vector3d a = camera_.ToCamera(capsule.from_mm);
@@ -82,8 +71,8 @@ bool CapsuleProjector::Project(const Capsule& capsule, ImageCapsule* image) cons
   const Eigen::Vector2d na = a.head<2>() / a.z(), nb = b.head<2>() / b.z();
   const double max_r2 = max_radius_ * max_radius_;
   if (na.squaredNorm() > max_r2 || nb.squaredNorm() > max_r2) return false;  // the lens would fold it back
-  image->a = Pixel(na);
-  image->b = Pixel(nb);
+  image->a = camera_.DistortToPixel(na);
+  image->b = camera_.DistortToPixel(nb);
   const double limit_x = kMaxOffImage * camera_.width, limit_y = kMaxOffImage * camera_.height;
   auto in_range = [&](const Eigen::Vector2d& p) {
     return std::abs(p.x() - 0.5 * camera_.width) < limit_x && std::abs(p.y() - 0.5 * camera_.height) < limit_y;

@@ -18,7 +18,6 @@
 // 100 mm to the camera plane, is not drawn; every coordinate cast to int is in range.
 #pragma once
 
-#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -63,14 +62,9 @@ class CapsuleProjector {
   double max_normalised_radius() const { return max_radius_; }
 
  private:
-  // Camera::DistortToPixel, the same arithmetic, inline and with the coefficients padded
-  // to 8 (this runs for both ends of every part of every particle and camera).
-  Eigen::Vector2d Pixel(const Eigen::Vector2d& normalised) const;
-
   Camera camera_;
   double focal_px_;  // mean of fx and fy: circles assume square pixels
   double max_radius_;
-  std::array<double, 8> k_{};  // the distortion coefficients, zeros beyond the camera's
 };
 
 class SilhouetteRenderer {
