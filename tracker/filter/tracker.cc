@@ -787,7 +787,7 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
         frames_since_start_ < options_.mirror_frames)
       return;
     legs_trial_due_ = false;
-    other_legs_ = Follower(false);
+    other_legs_ = Follower(options_.annealing.layers);
     other_legs_->filter_->Shift(0, 0.5);
     other_legs_->holds_order_ = true;
     other_legs_->last_order_ = Eigen::Vector2d(out->state[0] + 0.5, out->state[state_model_->placement().rate]);
@@ -829,9 +829,9 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
   other_legs_.reset();
 }
 
-std::unique_ptr<Tracker> Tracker::Follower(bool half_layers) const {
+std::unique_ptr<Tracker> Tracker::Follower(int layers) const {
   TrackerOptions options = options_;
-  if (half_layers) options.annealing.layers = std::max(1, options_.annealing.layers / 2);
+  options.annealing.layers = layers;
   auto follower = std::make_unique<Tracker>(model_, cameras_, options, table_);
   follower->tries_other_legs_ = false;
   follower->filter_->Reset(filter_->particles());
@@ -854,7 +854,7 @@ std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) co
   // The second pass starts from particles that have found the person: it searches with
   // half the layers. On the tuning clips the same (94.2 mm either way, 4 seeds), and a
   // start's second costs 1.19x its first pass on `07_01-4cam` instead of 1.30x.
-  const std::unique_ptr<Tracker> follower = Follower(true);
+  const std::unique_ptr<Tracker> follower = Follower(std::max(1, options_.annealing.layers / 2));
   Tracker& back = *follower;
   const int rate = state_model_->placement().rate;
   const auto turn = [rate](double* s) { s[rate] = -s[rate]; };

@@ -434,11 +434,10 @@ class Tracker {
   // The build learnt so far, to the body, the state model and the placers.
   void ApplyBuild();
   // A second tracker in this one's state (particles, build, views' alignment, search,
-  // start) that tries no other leg order itself: for BackOver (with half the annealing
-  // layers: its particles have found the person) and TryOtherLegs (with all of them: a
-  // trial compares two fits, and with half the layers the second fitted worse by more
-  // than a coat's two orders differ).
-  std::unique_ptr<Tracker> Follower(bool half_layers) const;
+  // start) annealing with `layers` layers, that tries no other leg order itself: for
+  // BackOver (half the layers: its particles have found the person) and TryOtherLegs
+  // (all of them: the header's "fair trial").
+  std::unique_ptr<Tracker> Follower(int layers) const;
   // After a frame tracked (`out`): the other leg order's trial (TrackerOptions::
   // legs_trial_frames) begun, stepped on `frame` or decided; when it wins, this tracker
   // takes its state and `out` its estimate.
