@@ -55,6 +55,7 @@
 #include "tracker/filter/likelihood.h"
 #include "tracker/filter/tracker.h"
 #include "tracker/frames/clip_source.h"
+#include "tracker/frames/floor_reflection.h"
 #include "tracker/frames/foreground.h"
 #include "tracker/run/track_job.h"
 #include "tracker/state/manifold_state.h"
@@ -466,6 +467,26 @@ void BM_LikelihoodObserve(benchmark::State& state) {
   state.counters["per_camera_frame"] = TimePer(static_cast<double>(state.iterations()));
 }
 BENCHMARK(BM_LikelihoodObserve)->Unit(benchmark::kMicrosecond);
+
+// The floor-reflection cut tried on one camera's observed mask (tracker/frames/
+// floor_reflection.h): every frame of every camera pays it, glossy floor or not, to gather
+// the evidence. OpenCV on one thread, as above.
+void BM_CutFloorReflections(benchmark::State& state) {
+  const Clip& clip = TheClip();
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  size_t i = 0;
+  for (auto _ : state) {
+    const int c = static_cast<int>(i % kCameras);
+    const size_t f = (i / kCameras) % clip.frames.size();
+    cv::Mat mask = clip.frames[f].masks[c];
+    benchmark::DoNotOptimize(CutFloorReflections(clip.truth.cameras[c], &mask).tried);
+    ++i;
+  }
+  cv::setNumThreads(threads);
+  state.counters["per_camera_frame"] = TimePer(static_cast<double>(state.iterations()));
+}
+BENCHMARK(BM_CutFloorReflections)->Unit(benchmark::kMicrosecond);
 
 // A colour frame to a mask by background subtraction (tracker/frames/foreground.h), as for a
 // recording: gain compensation, MOG2 (0) or KNN (1), clean-up, specks. OpenCV on one

@@ -120,6 +120,8 @@ void AddRenderCommands(CLI::App& app) {
       ->check(CLI::Range(32, 4096))->excludes(camera);
   render->add_option("--ring-radius", a->clip.rig.ring_radius_mm, "default rig: distance from the walk's centre, mm")
       ->capture_default_str()->check(CLI::Range(1000.0, 50000.0))->excludes(camera);
+  render->add_option("--ring-height", a->clip.rig.camera_height_mm, "default rig: the cameras' height above the floor, mm")
+      ->capture_default_str()->check(CLI::Range(100.0, 9999.0))->excludes(camera);
   render->add_option("--sensor-noise", a->clip.degradations.sensor_noise, "video noise std, grey levels")
       ->capture_default_str()->check(CLI::Range(0.0, 100.0));
   render->add_option("--mask-noise", a->clip.degradations.mask_noise_px,

@@ -46,6 +46,7 @@ struct TrackArguments {
   bool calibrate_from_walkers = false;
   bool full_resolution = false;
   bool no_clip_occluders = false;
+  bool keep_reflections = false;
   double person_height_m = 1.70;
   double max_clock_offset_s = 2;
   double calibration_seconds = 30;
@@ -136,6 +137,7 @@ void RunTrack(TrackArguments a) {
   if (a.full_body) a.job.tracker.body_detail = BodyDetail::kFull;
   a.job.working.enabled = !a.full_resolution;
   a.job.source.clip_occluders = !a.no_clip_occluders;
+  a.job.source.cut_reflections = !a.keep_reflections;
   a.job.tracker.threads = a.threads > 0 ? a.threads : std::max(1u, std::thread::hardware_concurrency());
   if (a.show) a.job.show = LiveWindows();
   if (a.calibrate_from_walkers) {
@@ -215,6 +217,10 @@ void RunTrack(TrackArguments a) {
   if (!working.empty()) {
     std::printf("working resolution (people brought to about %.0f px tall):%s\n", a.job.working.person_px,
                 working.c_str());
+  }
+  if (result.reflection_frames > 0) {
+    std::printf("reflections in the floor cut from the masks in %d frames (--keep-reflections to keep them)\n",
+                result.reflection_frames);
   }
   std::printf("with reading the frames%s: %.1f frames/s\n",
               a.job.source.clip.empty() || a.job.source.clip_foreground ? " and background subtraction" : "",
@@ -449,6 +455,9 @@ void AddTrackCommands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   track->add_flag("--no-occluders", a->no_clip_occluders,
                   "leave out a clip's own paintings of its occluders (occluders/CAMERA.png)");
+  track->add_flag("--keep-reflections", a->keep_reflections,
+                  "leave reflections in a glossy floor in the masks (default: each blob's mirror image below its "
+                  "feet is cut, by the camera; tracker/frames/floor_reflection.h)");
   track->add_flag("--full-resolution", a->full_resolution,
                   "track at the input's resolution (default: people taller than 200 px are brought to 200 px, "
                   "tracker/frames/working_resolution.h)");

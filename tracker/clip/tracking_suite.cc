@@ -60,6 +60,7 @@ std::vector<SuiteClip> ParseTrackingSuite(const std::string& text, const std::st
       else if (option == "--width") o.rig.width = in.ParseInt(value, what);
       else if (option == "--height") o.rig.height = in.ParseInt(value, what);
       else if (option == "--ring-radius") o.rig.ring_radius_mm = in.ParseDouble(value, what);
+      else if (option == "--ring-height") o.rig.camera_height_mm = in.ParseDouble(value, what);
       else if (option == "--fps") o.fps = in.ParseDouble(value, what);
       else if (option == "--max-frames") o.max_frames = in.ParseInt(value, what);
       else if (option == "--sensor-noise") o.degradations.sensor_noise = in.ParseDouble(value, what);

@@ -26,7 +26,7 @@ struct SuiteClip {
 
 // InputError naming the file and line for a malformed line, an unknown or bad option, a
 // repeated name. Options understood (as `jgpm render` has them): --cameras --width
-// --height --fps --max-frames --ring-radius --sensor-noise --mask-noise --holes --clutter
+// --height --fps --max-frames --ring-radius --ring-height --sensor-noise --mask-noise --holes --clutter
 // --lighting --drop-rate --width-scale --seed --rig --body-seed --clothing --bag --shadow --reflection
 // --occluders --calibration-error --pause --walk (--bag and --shadow take no value; --walk
 // once per walker; --pause as often as the walkers stop).

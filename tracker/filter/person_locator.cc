@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "tracker/frames/body_blobs.h"
+
 namespace jgpm {
 namespace {
 
@@ -26,53 +28,6 @@ constexpr double kHeadAndShouldersMm = 350;
 // deviation of men and women together): from a camera near head height it is most of what
 // the head says about the distance.
 constexpr double kAdultSpreadMm = 100;
-
-// The mask's blobs, with the pieces of one body joined: a blob above another, overlapping
-// it by half the narrower one's width, with a gap under a tenth of their joint height
-// (an occluder across the body, a belt of the same colour as the background) is the same
-// person. `labels`: CV_32S, 0 background, 1..n-1 the joined blobs; areas and boxes per
-// label (index 0 unused). Returns n.
-int BodyBlobs(const cv::Mat& mask, cv::Mat* labels, std::vector<int>* areas, std::vector<cv::Rect>* boxes) {
-  cv::Mat stats, centroids;
-  const int n = cv::connectedComponentsWithStats(mask != 0, *labels, stats, centroids, 8, CV_32S);
-  std::vector<int> root(n);
-  for (int l = 0; l < n; ++l) root[l] = l;
-  const auto find = [&](int l) {
-    while (root[l] != l) l = root[l] = root[root[l]];
-    return l;
-  };
-  auto box_of = [&](int l) {
-    return cv::Rect(stats.at<int>(l, cv::CC_STAT_LEFT), stats.at<int>(l, cv::CC_STAT_TOP),
-                    stats.at<int>(l, cv::CC_STAT_WIDTH), stats.at<int>(l, cv::CC_STAT_HEIGHT));
-  };
-  for (int a = 1; a < n; ++a) {
-    for (int b = a + 1; b < n; ++b) {
-      const cv::Rect p = box_of(a), q = box_of(b);
-      const int overlap = std::min(p.x + p.width, q.x + q.width) - std::max(p.x, q.x);
-      const int gap = std::max(p.y, q.y) - std::min(p.y + p.height, q.y + q.height);
-      const int joint = std::max(p.y + p.height, q.y + q.height) - std::min(p.y, q.y);
-      if (overlap >= 0.5 * std::min(p.width, q.width) && gap >= 0 && gap < 0.1 * joint) root[find(b)] = find(a);
-    }
-  }
-  std::vector<int> joined(n, 0);
-  int count = 1;
-  for (int l = 1; l < n; ++l)
-    if (find(l) == l) joined[l] = count++;
-  areas->assign(count, 0);
-  boxes->assign(count, cv::Rect());
-  for (int l = 1; l < n; ++l) {
-    const int j = joined[find(l)];
-    (*areas)[j] += stats.at<int>(l, cv::CC_STAT_AREA);
-    (*boxes)[j] = (*boxes)[j].empty() ? box_of(l) : ((*boxes)[j] | box_of(l));
-  }
-  if (count < n) {
-    for (int v = 0; v < labels->rows; ++v) {
-      int* row = labels->ptr<int>(v);
-      for (int u = 0; u < labels->cols; ++u) row[u] = joined[find(row[u])];
-    }
-  }
-  return count;
-}
 
 struct BlobEnds {
   double foot_u = 0, foot_v = 0;  // the feet: column, and the lowest row

@@ -44,6 +44,9 @@ struct FrameSourceSpec {
   // (occluders/, when its scene has any), used unless `clip_occluders` is off.
   std::vector<std::string> occluders;
   bool clip_occluders = true;
+  // Each blob's reflection in a glossy floor cut from the masks (floor_reflection.h; not
+  // through a guessed camera).
+  bool cut_reflections = true;
   // Live camera.
   int device_width = 640, device_height = 480;
   double device_fps = 30;

@@ -25,6 +25,7 @@
 #include "prior/model/inference.h"
 #include "prior/model/model_file.h"
 #include "tracker/frames/clip_source.h"
+#include "tracker/frames/floor_reflection.h"
 #include "tracker/frames/occluder_masks.h"
 #include "tracker/frames/prefetch_source.h"
 #include "tracker/frames/video_frame_source.h"
@@ -241,6 +242,15 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   if (o.truth_start && o.people) ThrowInputError("--init truth", "starts one person; --people all finds everyone");
   std::vector<cv::Mat> paintings = OccluderPaintings(o.source, made->cameras());
   if (!paintings.empty()) made = std::make_unique<OccludedSource>(std::move(made), std::move(paintings));
+  // Reflections are cut at the input's size, before the working resolution is chosen from
+  // the blobs' heights (a reflection doubles them). Not through a guessed camera: the cut
+  // rests on the camera's height and tilt.
+  const FloorReflectionSource* reflections = nullptr;
+  if (o.source.cut_reflections && !o.source.camera_guess) {
+    auto cut = std::make_unique<FloorReflectionSource>(std::move(made), video && video->live());
+    reflections = cut.get();
+    made = std::move(cut);
+  }
   const auto source = std::make_unique<WorkingResolutionSource>(std::move(made), o.working, video && video->live());
   std::optional<OutputFolder> folder;
   if (!o.out.empty()) folder.emplace(o.out);
@@ -398,6 +408,7 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     run.frames = TrackSource(frames, &tracker, on_frame, stop);
   }
   if (ahead) ahead->Stop();  // the sources' counts below are the reading thread's
+  if (reflections) result.reflection_frames = reflections->frames_cut();
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
   for (const PeopleFrame& f : result.people) run.tracking_seconds += f.seconds;
   result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -70,6 +70,7 @@ struct TrackJobResult {
                         // the background's learning frames when it is learnt)
   std::vector<Camera> working_cameras;  // each camera as the tracker saw it (the working
                                         // resolution's; run.cameras are the full-size ones)
+  int reflection_frames = 0;  // frames with a reflection in the floor cut from some mask
 };
 
 // Each tracked frame as it is given; the frames the tracker has read so far (a start's

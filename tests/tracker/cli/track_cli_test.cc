@@ -163,6 +163,47 @@ TEST(TrackCli, DroppedFramesArePredicted) {
   }
 }
 
+// A glossy floor seen from a low camera: the reflections are cut from the masks as tracked
+// (saved with --save-masks: most of what the clip's observed masks hold below the walker's
+// feet, the mirror image, is gone), and the summary says so; --keep-reflections keeps them.
+TEST(TrackCli, AGlossyFloorsReflectionsAreCutUnlessKept) {
+  test::TempDir dir;
+  const fs::path clip = dir.path() / "glossy";
+  const Result rendered =
+      test::RunJgpm("render --amc " + (test::CmuRoot() / "subjects/07/07_01.amc").string() + " --out " +
+                    clip.string() + " --cameras 1 --ring-height 1000 --reflection 0.3 --max-frames 20 --no-contact-sheet");
+  ASSERT_EQ(rendered.status, 0) << rendered.err;
+  for (const bool keep : {false, true}) {
+    const fs::path out = dir.path() / (keep ? "kept" : "cut");
+    const Result r = Track(clip, out, std::string("--save-masks --full-resolution") + (keep ? " --keep-reflections" : ""));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out.find("reflections in the floor cut from the masks in 1") != std::string::npos, !keep) << r.out;
+    long below = 0, observed_below = 0;  // foreground under the walker's exact mask
+    for (int k = 0; k < kFrames; ++k) {
+      const std::string name = cv::format("%06d.png", k);
+      const cv::Mat walker = cv::imread((clip / "masks/cam0" / name).string(), cv::IMREAD_GRAYSCALE);
+      const cv::Mat observed = cv::imread((clip / "observed/cam0" / name).string(), cv::IMREAD_GRAYSCALE);
+      const cv::Mat tracked = cv::imread((out / "masks/cam0" / name).string(), cv::IMREAD_GRAYSCALE);
+      ASSERT_FALSE(walker.empty() || tracked.empty() || observed.empty()) << name;
+      ASSERT_EQ(tracked.size(), walker.size());
+      cv::Mat at;
+      cv::findNonZero(walker, at);
+      const cv::Rect box = cv::boundingRect(at);
+      const cv::Rect under(0, box.y + box.height, walker.cols, walker.rows - box.y - box.height);
+      below += cv::countNonZero(tracked(under));
+      observed_below += cv::countNonZero(observed(under));
+    }
+    std::printf("%s: %ld px under the walkers' feet as tracked, %ld in the observed masks\n", keep ? "kept" : "cut",
+                below, observed_below);
+    ASSERT_GT(observed_below, 2000);  // the premise: the reflection is in the observed masks
+    if (keep) {
+      EXPECT_EQ(below, observed_below);
+    } else {
+      EXPECT_LT(below, 0.4 * observed_below);  // 0.28: three frames of 20 not cut, and the feet's rows
+    }
+  }
+}
+
 TEST(TrackCli, NobodySeenIsLostThenFoundAgain) {
   test::TempDir dir;
   const fs::path clip = BlankedCopy(dir.path() / "gap", 8, 12), out = dir.path() / "out";

@@ -36,9 +36,13 @@ TEST(TrackingSuite, ParsesNamesTrialsAndOptions) {
 TEST(TrackingSuite, RealismOptionsAndFlags) {
   const std::vector<SuiteClip> clips = ParseTrackingSuite(
       "w 35_16 --rig webcam --body-seed 13 --clothing coat --bag --shadow --occluders 2 --calibration-error 1.5\n"
-      "s 07_01 --rig surveillance --cameras 3 --shadow --pause 1,0.5 --pause 0.25,2\n",
+      "s 07_01 --rig surveillance --cameras 3 --shadow --pause 1,0.5 --pause 0.25,2\n"
+      "g 07_03 --ring-height 1000 --reflection 0.3\n",
       "s.txt");
-  ASSERT_EQ(clips.size(), 2u);
+  ASSERT_EQ(clips.size(), 3u);
+  EXPECT_EQ(clips[2].options.rig.camera_height_mm, 1000);
+  EXPECT_EQ(clips[2].options.scene.reflection, 0.3);
+  EXPECT_EQ(clips[0].options.rig.camera_height_mm, 1500);
   const ClipOptions& w = clips[0].options;
   EXPECT_EQ(w.rig.kind, RigKind::kWebcam);
   EXPECT_EQ(w.rig.num_cameras, 1);  // the webcam rig's own
@@ -72,7 +76,7 @@ TEST(TrackingSuite, RealismOptionsAndFlags) {
 }
 
 TEST(TrackingSuite, TheShippedSuitesParse) {
-  for (const char* name : {"realism_suite.txt", "realism_tuning.txt"}) {
+  for (const char* name : {"realism_suite.txt", "realism_tuning.txt", "glossy_suite.txt"}) {
     const std::vector<SuiteClip> clips =
         ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts" / name);
     EXPECT_GE(clips.size(), 5u) << name;
