@@ -19,6 +19,18 @@ namespace {
 // its mirror fits at any row along it).
 constexpr double kStaturePerSd2 = 0.02;
 
+// Cameras' readings of one person's place agree within this (the person locator's error
+// between cameras, TrackerOptions' other_floors_mm).
+constexpr double kAgreeMm = 300;
+
+// The largest distance between two of `points`.
+double Spread(const std::vector<Eigen::Vector2d>& points) {
+  double spread = 0;
+  for (size_t i = 0; i < points.size(); ++i)
+    for (size_t j = i + 1; j < points.size(); ++j) spread = std::max(spread, (points[i] - points[j]).norm());
+  return spread;
+}
+
 // The mirror across the floor of the image rows below row r: for each row v in
 // (r, last], the row and column shift of its mirror pixel on the vertical line through
 // the feet's floor point, and the line's column there.
@@ -126,8 +138,9 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
     };
     // Standing on the blob's bottom, how far from an adult's mean the person would be
     // (infinite: not standing on the floor at all).
-    Eigen::Vector3d floor;
+    Eigen::Vector3d floor = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
     const double whole = height_at(last, &floor);
+    const Eigen::Vector2d whole_mm = std::isfinite(whole) ? Eigen::Vector2d(floor.x(), floor.z()) : cut.whole_mm;
     const double whole_off = std::isfinite(whole) ? std::abs(whole - kAdultMm) : std::numeric_limits<double>::infinity();
     const bool bottom_cut = last >= mask->rows - 1;
     // How well a mirror pixel lands: 1 on the blob, falling to 0 at `grow` from it (a peak
@@ -166,17 +179,20 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
     double best_share = 0, best_score = -std::numeric_limits<double>::infinity();
     double best_height = 0, best_half_width = 0;
     Eigen::Vector3d best_floor;
+    double proposed_score = -std::numeric_limits<double>::infinity();
+    Eigen::Vector3d proposed = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
     for (int r = last - 1; r > box.y; --r) {
       below_total += row_count[r + 1 - box.y];
       const int above_total = areas[l] - below_total;
       // Far enough below (the box's last row is the blob's; a blob cut by the image's
       // bottom edge may go on below it), and enough of it: a tenth of what is above.
       if ((!bottom_cut && last - r < o.min_extent * (r - box.y)) || 10 * below_total < above_total) continue;
-      // An adult standing at r, and more of one than the whole blob standing on the floor.
+      // An adult standing at r, and more of one than the whole blob standing on the floor
+      // (unless only proposing).
       const double height = height_at(r, &floor);
-      if (!(height >= kMinAdultMm && height <= kMaxAdultMm &&
-            std::abs(height - kAdultMm) + o.stature_margin * kAdultSpreadMm <= whole_off))
-        continue;
+      if (!(height >= kMinAdultMm && height <= kMaxAdultMm)) continue;
+      const bool nearer = std::abs(height - kAdultMm) + o.stature_margin * kAdultSpreadMm <= whole_off;
+      if (!nearer && !o.propose) continue;
       // And one person wide there: people side by side or one behind another, merged into
       // one blob, are not one person and their reflection.
       const double depth = camera.ToCamera(floor).z();
@@ -191,12 +207,14 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
       const double share = mirrored(*mirror, r, l, box, half_width_px, &count) / below_total;
       const double off = (height - kAdultMm) / kAdultSpreadMm;
       const double score = share - kStaturePerSd2 * off * off;
-      if (score > best_score) {
+      if (nearer && score > best_score) {
         best_score = score, best_share = share, best_row = r;
         best_height = height, best_half_width = half_width_px, best_floor = floor;
       }
+      if (o.propose && share >= o.min_share && score > proposed_score) proposed_score = score, proposed = floor;
     }
     cut.best_share = std::max(cut.best_share, best_share);
+    if (o.propose) cut.whole_mm = whole_mm, cut.proposed_mm = Eigen::Vector2d(proposed.x(), proposed.z());
     if (best_row < 0 || best_share < o.min_share) continue;
     if (!copied) *mask = mask->clone(), copied = true;
     const auto erase = [&](int m, const cv::Rect& in) {
@@ -243,7 +261,8 @@ bool FloorReflectionSource::Glossy() const {
     ++voting;
     glossy += found_[c] >= glossy_.glossy_share * tried_[c];
   }
-  return glossy > 0 && glossy >= glossy_.glossy_share * voting;
+  return (glossy > 0 && glossy >= glossy_.glossy_share * voting) ||
+         (agreed_ >= glossy_.min_glossy_frames && agreed_ >= glossy_.glossy_share * proposed_);
 }
 
 FloorReflectionSource::Read FloorReflectionSource::ReadOne(Frame frame) {
@@ -251,6 +270,10 @@ FloorReflectionSource::Read FloorReflectionSource::ReadOne(Frame frame) {
   const bool ahead = read_++ < glossy_.lookahead_frames;
   if (read.frame.dropped || (!ahead && !Glossy() && read_ % std::max(1, glossy_.try_every) != 0)) return read;
   read.cut.resize(read.frame.masks.size());
+  FloorReflectionOptions options = options_;
+  options.propose = at_mask_size_.size() >= 2;
+  std::vector<size_t> proposing;
+  std::vector<Eigen::Vector2d> wholes, feet;
   for (size_t c = 0; c < read.frame.masks.size() && c < at_mask_size_.size(); ++c) {
     const cv::Mat& mask = read.frame.masks[c];
     if (mask.empty()) continue;
@@ -259,10 +282,27 @@ FloorReflectionSource::Read FloorReflectionSource::ReadOne(Frame frame) {
       camera = ScaleCamera(inner_->cameras()[c], static_cast<double>(mask.cols) / inner_->cameras()[c].width);
     }
     cv::Mat cut = mask;
-    const ReflectionCut found = CutFloorReflections(camera, &cut, options_);
+    const ReflectionCut found = CutFloorReflections(camera, &cut, options);
     tried_[c] += found.tried > 0;
     found_[c] += found.blobs > 0;
     if (found.blobs > 0) read.cut[c] = cut;
+    if (found.tried == 1 && found.whole_mm.allFinite() && found.proposed_mm.allFinite()) {
+      proposing.push_back(c);
+      wholes.push_back(found.whole_mm);
+      feet.push_back(found.proposed_mm);
+    }
+  }
+  // The cameras checked against each other (above).
+  if (proposing.size() < 2) return read;
+  ++proposed_;
+  if (!(Spread(feet) <= kAgreeMm && Spread(wholes) >= 2 * kAgreeMm)) return read;
+  ++agreed_;
+  FloorReflectionOptions waived = options_;
+  waived.stature_margin = -std::numeric_limits<double>::infinity();
+  for (const size_t c : proposing) {
+    if (!read.cut[c].empty()) continue;
+    cv::Mat cut = read.frame.masks[c];
+    if (CutFloorReflections(at_mask_size_[c], &cut, waived).blobs > 0) read.cut[c] = cut;
   }
   return read;
 }

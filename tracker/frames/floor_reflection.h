@@ -28,19 +28,21 @@
 // glossy-floor decision below leaves alone. The rendered clips' feet sink up to 40 mm
 // into the floor, below the mirror plane: those rows go with the reflection.
 //
-// What it does not do: from a camera between about 1.4 and 2.2 m up (the lab's ring at
-// 1.5 m, a phone held at the chest) the whole blob standing on its bottom is itself an
-// adult's height within two standard deviations (the ring's glossy 07_03: 1.58 m against
-// 1.64 m with the reflection cut), so one view cannot tell a reflection from legs and
-// nothing is cut. A guessed camera is not used (track_job.cc). The people are adults (a
-// child with a reflection is not cut), and a reflection merged with another walker's
-// blob is not cut.
+// What it does not do: from one camera between about 1.4 and 2.2 m up (a phone held at
+// the chest) the whole blob standing on its bottom is itself an adult's height within two
+// standard deviations (the ring's glossy 07_03: 1.58 m against 1.64 m with the reflection
+// cut), so one view cannot tell a reflection from legs and nothing is cut; two cameras can
+// (FloorReflectionSource). A guessed camera is not used (track_job.cc). The people are
+// adults (a child with a reflection is not cut), and a reflection merged with another
+// walker's blob is not cut.
 #pragma once
 
 #include <deque>
+#include <limits>
 #include <memory>
 #include <vector>
 
+#include <Eigen/Core>
 #include <opencv2/core/mat.hpp>
 
 #include "calibration/camera.h"
@@ -71,6 +73,9 @@ struct FloorReflectionOptions {
   double stature_margin = 2;
   // A person's widest: a stride seen from the side with the arms swinging is 0.8-1 m.
   double max_width_mm = 1200;
+  // Also find each blob's best row with the stature margin waived (ReflectionCut's
+  // proposed_mm), for several cameras to check against each other (FloorReflectionSource).
+  bool propose = false;
 };
 
 struct ReflectionCut {
@@ -78,6 +83,11 @@ struct ReflectionCut {
   int blobs = 0;   // blobs whose reflection was cut
   int pixels = 0;  // pixels taken out
   double best_share = 0;  // the best row's share of any blob, cut or not (0: no row tried)
+  // With FloorReflectionOptions::propose, the last blob tried: where it stands on the
+  // floor (x, z, mm) on its bottom row, and at its best row whose mirror fits with the
+  // stature margin waived (NaN: none).
+  Eigen::Vector2d whole_mm = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector2d proposed_mm = whole_mm;
 };
 
 // Takes each blob's reflection in the floor out of `mask` (CV_8UC1, nonzero foreground) seen
@@ -97,6 +107,18 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
 // only now and then (the plaza clip 5%; `vtest.avi` about 1%, where the cut took the legs
 // of walkers passing in front of others). One camera alone cannot tell a shadow cast
 // towards it from a reflection, and cuts it: what lies below the feet either way.
+//
+// Cameras near head height (about 1.4-2.2 m up) find no row nearer an adult than the whole
+// blob (above), but two of them can tell: where each one's blob stands on its bottom row
+// is pulled towards that camera by a reflection, differently for each, while the feet
+// under the mirror rows are one place. So with two cameras or more, each one's single
+// blob also proposes its best mirror row with the stature margin waived (propose), and
+// when the proposed feet agree within kAgreeMm while the bottoms disagree by twice that,
+// the proposals are cut too. The floor is also taken for glossy when such frames are
+// glossy_share of the frames with two proposals or more (min_glossy_frames at least):
+// the glossy suite's 2- and 4-camera clips 57-100% of their frames, all of the frames
+// with two proposals; the clean, realism, tuning, held-out and crowd suites none (the
+// ring clips propose the hips or the knees in up to every frame, whose feet disagree).
 struct GlossyFloorOptions {
   double glossy_share = 2.0 / 3;
   int min_glossy_frames = 10;
@@ -136,6 +158,7 @@ class FloorReflectionSource : public FrameSource {
   FloorReflectionOptions options_;
   std::vector<Camera> at_mask_size_;  // per camera, scaled to its masks
   std::vector<int> tried_, found_;    // per camera: frames with a blob tried, with a reflection
+  int proposed_ = 0, agreed_ = 0;     // frames with two proposals or more, with them agreeing
   std::deque<Read> ahead_;
   int frames_cut_ = 0;
   long read_ = 0;  // frames read from `inner_`

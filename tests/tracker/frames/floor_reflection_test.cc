@@ -21,6 +21,7 @@
 #include "io/mocap/asf.h"
 #include "test_support.h"
 #include "tracker/clip/synthetic_clip.h"
+#include "tracker/frames/clip_source.h"
 
 namespace jgpm {
 namespace {
@@ -134,7 +135,8 @@ void Expect(const std::string& trial, const RigOptions& rig, bool cut) {
   EXPECT_LT(glossy.body_cut, 0.001 * glossy.walker);
 }
 
-// The lab's ring at 1.5 m, as the suites have it: between heights that tell.
+// The lab's ring at 1.5 m, as the suites have it: between heights that tell, one camera at
+// a time (the source checks two against each other: below).
 TEST(FloorReflection, NotCutFromCamerasAtChestHeight) { Expect("07_03", Rig(RigKind::kRing, 2), false); }
 TEST(FloorReflection, CutFromALowCamera) { Expect("07_03", Rig(RigKind::kRing, 2, 1000), true); }
 TEST(FloorReflection, CutFromSurveillanceCameras) { Expect("39_13", Rig(RigKind::kSurveillance, 2), true); }
@@ -245,6 +247,55 @@ TEST(FloorReflection, OnlyAGlossyFloorIsCut) {
   while (source.Next(&frame)) EXPECT_EQ(cv::countNonZero(frame.masks[0] != both), 0);
   EXPECT_FALSE(source.Glossy());
   EXPECT_EQ(source.frames_cut(), 0);
+}
+
+// Two cameras at chest height, each unable to tell alone: through the source, the feet
+// under each one's mirror row are one place while the blobs' bottoms are not, so a glossy
+// floor's reflections are cut; on the matt floor the proposals (hips, knees) disagree and
+// nothing is.
+TEST(FloorReflection, TwoCamerasAtChestHeightTellByWhereTheFeetAgree) {
+  const ClipSource source{(test::CmuRoot() / "subjects/07/07.asf").string(),
+                          (test::CmuRoot() / "subjects/07/07_03.amc").string()};
+  const Skeleton skeleton = ReadAsf(source.asf);
+  const Motion motion = ReadAmc(source.amc, skeleton);
+  test::TempDir dir;
+  ClipOptions options;
+  options.max_frames = 40;
+  options.rig = Rig(RigKind::kRing, 2);
+  options.contact_sheet = false;
+  for (const double reflection : {0.0, 0.3}) {
+    options.scene.reflection = reflection;
+    RenderClip(skeleton, motion, source, {}, options, (dir.path() / (reflection > 0 ? "glossy" : "matt")).string());
+  }
+  for (const char* floor : {"matt", "glossy"}) {
+    const bool glossy = std::string(floor) == "glossy";
+    FloorReflectionSource cut(std::make_unique<ClipFrameSource>(dir.path() / floor, ClipFrameSourceOptions{}), false);
+    long reflection = 0, reflection_cut = 0, walker = 0, walker_cut = 0;
+    Frame frame;
+    while (cut.Next(&frame)) {
+      for (size_t c = 0; c < frame.masks.size(); ++c) {
+        const std::string& name = cut.cameras()[c].name;
+        const cv::Mat observed = ReadMask(dir.path() / floor, "observed", name, frame.index);
+        const cv::Mat matt = ReadMask(dir.path() / "matt", "observed", name, frame.index);
+        const cv::Mat exact = ReadMask(dir.path() / floor, "masks", name, frame.index);
+        const cv::Mat removed = observed & ~frame.masks[c];
+        reflection += cv::countNonZero(observed & ~matt);
+        reflection_cut += cv::countNonZero(removed & ~matt);
+        walker += cv::countNonZero(exact & observed);
+        walker_cut += cv::countNonZero(removed & exact);
+      }
+    }
+    std::printf("%s, two cameras 1.5 m up: %d frames cut, reflection %ld px, %.1f%% cut; walker %.2f%% cut\n", floor,
+                cut.frames_cut(), reflection, reflection ? 100.0 * reflection_cut / reflection : 0.0,
+                100.0 * walker_cut / walker);
+    EXPECT_EQ(cut.Glossy(), glossy);
+    if (glossy) {
+      EXPECT_GT(reflection_cut, 0.3 * reflection);  // 39%: the frames where both propose
+      EXPECT_LT(walker_cut, 0.03 * walker);
+    } else {
+      EXPECT_EQ(cut.frames_cut(), 0);
+    }
+  }
 }
 
 }  // namespace
