@@ -17,17 +17,13 @@ double Median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// Where a standing adult's head is when the feet cannot be seen (mm): the mean adult
-// height, the person's own unknown.
-constexpr double kAdultHeightMm = 1700;
+// Where a standing adult's head is when the feet cannot be seen: the mean adult height
+// (kAdultHeightMm, body_blobs.h), the person's own unknown; from a camera near head height
+// their spread (kAdultSpreadMm) is most of what the head says about the distance.
 // What of a person above someone nearer must show to be taken for one (mm): a head and
 // shoulders, about a fifth of an adult's height (a sliver of the nearer one's own head
 // that their estimate leaves over is placed where they stand, and the births skip it).
 constexpr double kHeadAndShouldersMm = 350;
-// Adults' heights spread about kAdultHeightMm by this much either way (about one standard
-// deviation of men and women together): from a camera near head height it is most of what
-// the head says about the distance.
-constexpr double kAdultSpreadMm = 100;
 
 struct BlobEnds {
   double foot_u = 0, foot_v = 0;  // the feet: column, and the lowest row

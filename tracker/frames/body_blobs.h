@@ -11,6 +11,11 @@
 
 namespace jgpm {
 
+// A standing adult's height, mm: the mean of men and women together, and about one
+// standard deviation either way. Whom a blob can be (the person locator, the floor
+// reflection's cut) rests on it.
+constexpr double kAdultHeightMm = 1700, kAdultSpreadMm = 100;
+
 // `labels`: CV_32S, 0 background, 1..n-1 the joined blobs; areas and boxes per label
 // (index 0 unused). Returns n.
 int BodyBlobs(const cv::Mat& mask, cv::Mat* labels, std::vector<int>* areas, std::vector<cv::Rect>* boxes);

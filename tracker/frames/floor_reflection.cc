@@ -141,7 +141,7 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
     Eigen::Vector3d floor = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
     const double whole = height_at(last, &floor);
     const Eigen::Vector2d whole_mm = std::isfinite(whole) ? Eigen::Vector2d(floor.x(), floor.z()) : cut.whole_mm;
-    const double whole_off = std::isfinite(whole) ? std::abs(whole - kAdultMm) : std::numeric_limits<double>::infinity();
+    const double whole_off = std::isfinite(whole) ? std::abs(whole - kAdultHeightMm) : std::numeric_limits<double>::infinity();
     const bool bottom_cut = last >= mask->rows - 1;
     // How well a mirror pixel lands: 1 on the blob, falling to 0 at `grow` from it (a peak
     // at the mirror's best alignment rather than a plateau as wide as the tolerance). Made
@@ -191,7 +191,7 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
       // (unless only proposing).
       const double height = height_at(r, &floor);
       if (!(height >= kMinAdultMm && height <= kMaxAdultMm)) continue;
-      const bool nearer = std::abs(height - kAdultMm) + o.stature_margin * kAdultSpreadMm <= whole_off;
+      const bool nearer = std::abs(height - kAdultHeightMm) + o.stature_margin * kAdultSpreadMm <= whole_off;
       if (!nearer && !o.propose) continue;
       // And one person wide there: people side by side or one behind another, merged into
       // one blob, are not one person and their reflection.
@@ -205,7 +205,7 @@ ReflectionCut CutFloorReflections(const Camera& camera, cv::Mat* mask, const Flo
       // (not another's legs, or a shadow cast sideways, in the same blob).
       int count = 0;
       const double share = mirrored(*mirror, r, l, box, half_width_px, &count) / below_total;
-      const double off = (height - kAdultMm) / kAdultSpreadMm;
+      const double off = (height - kAdultHeightMm) / kAdultSpreadMm;
       const double score = share - kStaturePerSd2 * off * off;
       if (nearer && score > best_score) {
         best_score = score, best_share = share, best_row = r;

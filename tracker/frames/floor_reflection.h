@@ -9,7 +9,7 @@
 // The cut, per blob (body_blobs.h: a reflection broken at the feet is joined to its
 // walker), by the camera. A row r of the blob is tried as where the feet touch the floor
 // when an adult stands there: the blob's top, above the floor point under the blob's axis
-// at r, is kMinAdultMm-kMaxAdultMm up, and nearer kAdultMm by stature_margin standard
+// at r, is kMinAdultMm-kMaxAdultMm up, and nearer kAdultHeightMm by stature_margin standard
 // deviations than the whole blob standing on its bottom row would be; the blob is one
 // person wide there (max_width_mm) and reaches below r at least min_extent as far as
 // above it (unless the image's bottom edge cuts it). The floor mirrors the vertical line
@@ -46,14 +46,14 @@
 #include <opencv2/core/mat.hpp>
 
 #include "calibration/camera.h"
+#include "tracker/frames/body_blobs.h"
 #include "tracker/frames/frame_source.h"
 
 namespace jgpm {
 
-// An adult's height: 1.7 m +- 3.5 standard deviations of 0.1 m (men and women together;
-// the person locator's mean and spread, person_locator.cc).
-constexpr double kAdultMm = 1700, kAdultSpreadMm = 100;
-constexpr double kMinAdultMm = kAdultMm - 3.5 * kAdultSpreadMm, kMaxAdultMm = kAdultMm + 3.5 * kAdultSpreadMm;
+// An adult's height, the mean +- 3.5 standard deviations (body_blobs.h).
+constexpr double kMinAdultMm = kAdultHeightMm - 3.5 * kAdultSpreadMm;
+constexpr double kMaxAdultMm = kAdultHeightMm + 3.5 * kAdultSpreadMm;
 
 struct FloorReflectionOptions {
   // The share below the feet that must mirror onto the person. The glossy suite's frames
