@@ -26,8 +26,11 @@
 // split between the heads, and one too tall for a person (one behind another, seen from
 // above) is cut across (person_locator.cc).
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
-// clutter in the air is) are passed over; with several cameras the place that most cameras'
-// blobs agree on (within 1 m) is taken, and the answer is the median of those blobs.
+// clutter in the air is, or with an upper half whose rows are at the median wider than 0.7
+// of the height, as a ball, a cart or a clutter blob is; a blob with a painted object above
+// its top as well as below is in front of it, not behind it) are passed over; with
+// several cameras the place that most cameras' blobs agree on (within 1 m) is taken, and
+// the answer is the median of those blobs.
 // Several people: the same, again and again, over the blobs not yet taken, so each blob is
 // one person's; the caller chooses among them (the strongest, the nearest to a place where
 // a tracked person is expected, or to a pixel a user pointed at).
@@ -73,10 +76,13 @@ struct PersonSighting {
 // `hidden` (optional, per camera, CV_8UC1 of the mask's size): where people nearer are drawn
 // (several tracked at once) and static occluders painted (tracker/frames/occluder_masks.h);
 // a blob resting on them has its feet hidden, and is placed by its head and the hidden
-// run below it.
+// run below it. `painted` (optional, likewise): the static occluders alone, when known; a
+// blob with one right above its top as well is in front of it, not behind (a drawing of
+// someone is an estimate a few pixels off, and does not count).
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
                                          int min_blob_px = 60, bool split_merged = false,
-                                         const std::vector<cv::Mat>& hidden = {});
+                                         const std::vector<cv::Mat>& hidden = {},
+                                         const std::vector<cv::Mat>& painted = {});
 
 // Which one, when several people are seen.
 struct PersonPreference {
@@ -105,6 +111,6 @@ PersonSighting ChoosePerson(const std::vector<PersonSighting>& people, const Per
 // The preferred one of LocatePeople.
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
                             int min_blob_px = 60, const PersonPreference& prefer = {},
-                            const std::vector<cv::Mat>& hidden = {});
+                            const std::vector<cv::Mat>& hidden = {}, const std::vector<cv::Mat>& painted = {});
 
 }  // namespace jgpm

@@ -181,7 +181,8 @@ Tracker::Sightings Tracker::Locate(const Frame& frame) const {
   seen.index = frame.index;
   seen.time_s = frame.time_s;
   seen.may_hide = !frame.hidden.empty();
-  if (!frame.dropped) seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, frame.hidden);
+  if (!frame.dropped)
+    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, frame.hidden, Painted(frame));
   return seen;
 }
 
@@ -497,7 +498,8 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   std::optional<PersonSighting> sighting;
   const auto located = [&]() -> const PersonSighting& {
     if (!sighting)
-      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), frame.hidden);
+      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), frame.hidden,
+                              Painted(frame));
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
@@ -907,6 +909,11 @@ bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
 }
 
 double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / model_height_mm_, 0.8, 1.25); }
+
+const std::vector<cv::Mat>& Tracker::Painted(const Frame& frame) const {
+  static const std::vector<cv::Mat> none;
+  return options_.hidden_is_painted ? frame.hidden : none;
+}
 
 bool Tracker::HeadOnBlob(const PersonSighting& seen) const {
   TrackedFrame estimate;

@@ -292,6 +292,11 @@ struct TrackerOptions {
   // Starts (and restarts) read merged blobs as the people in them (LocatePeople's
   // split_merged); several people tracked at once set it, as their births do.
   bool split_merged_starts = false;
+  // Frame::hidden is the painted static occluders alone (one person tracked), which the
+  // locator may also use to tell a blob in front of an object from one behind it
+  // (LocatePeople's `painted`). Several people tracked at once clear it: their hidden
+  // pixels hold the others' drawings too.
+  bool hidden_is_painted = true;
   // Starts also try each camera's own reading of the place where it differs from the
   // others' by more than relocate_distance_mm (Guess; InitialGuess::other_floors_mm).
   bool starts_try_each_camera = true;
@@ -429,6 +434,9 @@ class Tracker {
   // Whether the particles' mean has its head at the top of one of `seen`'s blobs
   // (TrackerOptions::head_on_blob).
   bool HeadOnBlob(const PersonSighting& seen) const;
+  // The frame's painted occluders, when its hidden pixels are only those
+  // (TrackerOptions::hidden_is_painted); else none.
+  const std::vector<cv::Mat>& Painted(const Frame& frame) const;
   // The frame's pose, bone ends, size, width and heading from out->state (as ExactPose).
   void SetEstimate(TrackedFrame* out) const;
   // The build learnt so far, to the body, the state model and the placers.

@@ -76,7 +76,7 @@ TEST(TrackingSuite, RealismOptionsAndFlags) {
 }
 
 TEST(TrackingSuite, TheShippedSuitesParse) {
-  for (const char* name : {"realism_suite.txt", "realism_tuning.txt", "glossy_suite.txt"}) {
+  for (const char* name : {"realism_suite.txt", "realism_tuning.txt", "glossy_suite.txt", "harsh_suite.txt"}) {
     const std::vector<SuiteClip> clips =
         ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts" / name);
     EXPECT_GE(clips.size(), 5u) << name;
