@@ -228,6 +228,32 @@ TEST(PersonLocator, ABlobAsWideAsItIsTallIsNotAPerson) {
   EXPECT_LT((seen[0].floor_mm - LocatePerson({side}, {c.view.masks[0]}).floor_mm).norm(), 1.0);
 }
 
+// A thin upright ellipse of a person's height and half their width standing there instead
+// (a clutter blob drifting upright, a pole with a sign): upright enough, but convex, which
+// no one is, their neck and the gaps beside their arms and between their legs left empty
+// (person_locator.cc: kMaxSolidity). The walker, as seen, passes both rules.
+TEST(PersonLocator, AConvexBlobIsNotAPerson) {
+  const Scene& s = Walk();
+  const ClutterScene c = Clutter();
+  const Camera& side = s.cameras[0];
+  const Eigen::Vector3d centre = c.person + 1500 * c.across + Eigen::Vector3d(0, 850, 0);
+  Eigen::Vector2d at;
+  ASSERT_TRUE(side.Project(centre, &at));
+  const double depth = side.ToCamera(centre).z();
+  cv::Mat alone = cv::Mat::zeros(c.view.masks[0].size(), CV_8UC1);
+  cv::ellipse(alone, cv::Point(static_cast<int>(std::lround(at.x())), static_cast<int>(std::lround(at.y()))),
+              cv::Size(static_cast<int>(side.fx * 250 / depth), static_cast<int>(side.fy * 850 / depth)), 0, 0, 360, 255,
+              cv::FILLED);
+  std::printf("an upright ellipse 0.5 x 1.7 m: %d x %d px\n", cv::boundingRect(alone).width,
+              cv::boundingRect(alone).height);
+  EXPECT_TRUE(LocatePeople({side}, {alone}).empty());
+  const std::vector<PersonSighting> seen = LocatePeople({side}, {c.view.masks[0] | alone});
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_LT((seen[0].floor_mm - LocatePerson({side}, {c.view.masks[0]}).floor_mm).norm(), 1.0);
+  for (size_t k = 0; k < s.views.size(); ++k)  // every view of the walker is someone
+    EXPECT_EQ(LocatePeople({side}, {s.views[k].masks[0]}).size(), 1u) << "view " << k;
+}
+
 // A blob resting on a painted object is someone behind it, their feet hidden, unless the
 // object is above the blob's top too: a pillar as tall as the image with a clutter blob
 // passing in front of it, at head height, hides nothing of the blob, so the blob is in
