@@ -26,11 +26,12 @@
 // split between the heads, and one too tall for a person (one behind another, seen from
 // above) is cut across (person_locator.cc).
 // Blobs that cannot be a person standing on the floor (under 1 m or over 2.3 m tall, as
-// clutter in the air is, or with an upper half whose rows are at the median wider than 0.7
-// of the height, as a ball, a cart or a clutter blob is; a blob with a painted object above
-// its top as well as below is in front of it, not behind it) are passed over; with
-// several cameras the place that most cameras' blobs agree on (within 1 m) is taken, and
-// the answer is the median of those blobs.
+// clutter in the air is; seen whole, with an upper half whose rows are at the median wider
+// than 0.7 of the height, or filling more than 0.96 of its convex hull, as a ball, a cart
+// or a clutter blob is; a blob with a painted object above its top as well as below is in
+// front of it, not behind it) are passed over; with several cameras the place that most
+// cameras' blobs agree on (within 1 m) is taken, and the answer is the median of those
+// blobs.
 // Several people: the same, again and again, over the blobs not yet taken, so each blob is
 // one person's; the caller chooses among them (the strongest, the nearest to a place where
 // a tracked person is expected, or to a pixel a user pointed at).
