@@ -22,6 +22,10 @@ namespace {
 
 // The head's top above its bone end: the body model's head radius there (mm).
 constexpr double kHeadTopMm = 88;
+// How far apart two cameras' readings of one person may be (Guess): 3 m, each moved along
+// its line of sight by up to a quarter of 6 m (FuseReadings' spread; the ring's and a
+// webcam's walks are 3-7 m away), one nearer, the other farther.
+constexpr double kPairMm = 3000;
 
 cv::Rect Grow(const cv::Rect& box, double margin, int width, int height) {
   if (box.empty()) return box;
@@ -322,12 +326,34 @@ bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, con
   // lost 31.9 -> 44.5 mm, 4 seeds, its particles spread over places the locator's jitter
   // made.)
   if (options_.starts_try_each_camera) {
-    const PersonSighting& at = at_last ? *std::find_if(sightings.rbegin(), sightings.rend(), used)
-                                       : *std::find_if(sightings.begin(), sightings.end(), used);
+    const auto from = at_last ? std::find_if(sightings.rbegin(), sightings.rend(), used).base() - 1
+                              : std::find_if(sightings.begin(), sightings.end(), used);
+    const PersonSighting& at = *from;
     for (const Eigen::Vector2d& own : at.camera_floor_mm) {
       const Eigen::Vector2d offset = own - at.floor_mm;
       if (own.allFinite() && offset.norm() > options_.relocate_distance_mm)
         guess->other_floors_mm.push_back(guess->floor_mm + offset);
+    }
+    // A camera whose blob the locator did not count as this person's, its reading over the
+    // locator's 1 m from the others' (a shadow and clutter in the blob move a reading along
+    // the line of sight by more): where its line of sight meets theirs (FuseReadings) is
+    // one more place, for blobs within kPairMm of this person's place. The silhouettes
+    // choose: made one in the locator, any two cameras' blobs (another walker's, clutter's)
+    // would have a place where their lines of sight meet.
+    for (const PersonSighting& other : seen[from - sightings.begin()].people) {
+      if (!other.found || !other.feet_seen || other.floor_mm == at.floor_mm ||
+          (other.floor_mm - at.floor_mm).norm() > kPairMm)
+        continue;
+      std::vector<Eigen::Vector2d> readings = at.camera_floor_mm;
+      bool adds = false, shared = false;
+      for (size_t c = 0; c < readings.size() && c < other.camera_floor_mm.size(); ++c) {
+        if (!other.camera_floor_mm[c].allFinite()) continue;
+        (readings[c].allFinite() ? shared : adds) = true;
+        readings[c] = other.camera_floor_mm[c];
+      }
+      Eigen::Vector2d fused;
+      if (adds && !shared && FuseReadings(cameras_, readings, &fused))
+        guess->other_floors_mm.push_back(guess->floor_mm + fused - at.floor_mm);
     }
   }
   if (options_.known_size) {

@@ -639,5 +639,31 @@ TEST(PersonLocator, FeetHiddenByATableAreBetweenItsEdges) {
   EXPECT_LT((told[0].floor_mm - s.near_root).norm(), 0.5 * (untold[0].floor_mm - s.near_root).norm());
 }
 
+
+// Two cameras at right angles, each reading the person a metre off along its own line of
+// sight (a shadow, clutter at the feet): the fused place is where the lines of sight meet,
+// near the truth, where the readings' mean is 0.7 m off.
+TEST(PersonLocator, ReadingsOffAlongTheirLinesOfSightMeetAtThePerson) {
+  const Eigen::Vector2d truth(300, -1500);
+  const std::vector<Camera> cameras = {LookAtCamera("cam0", 320, 240, 260, {5300, 1500, -1500}, {300, 1000, -1500}),
+                                       LookAtCamera("cam1", 320, 240, 260, {300, 1500, 3500}, {300, 1000, -1500})};
+  std::vector<Eigen::Vector2d> readings = {truth + Eigen::Vector2d(1000, 0), truth + Eigen::Vector2d(0, -1000)};
+  Eigen::Vector2d place;
+  ASSERT_TRUE(FuseReadings(cameras, readings, &place));
+  EXPECT_LT((place - truth).norm(), 150) << place.transpose();
+  EXPECT_GT((0.5 * (readings[0] + readings[1]) - truth).norm(), 700);
+  // One camera's reading is no fusion; a camera without one (NaN) is left out.
+  const Eigen::Vector2d none = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_FALSE(FuseReadings(cameras, {readings[0], none}, &place));
+  EXPECT_FALSE(FuseReadings({cameras[0]}, readings, &place));
+  // Two cameras side by side see along the same line: their readings are averaged along it,
+  // the nearer one's (its spread a quarter of a shorter distance) counting more.
+  const std::vector<Camera> side_by_side = {cameras[0], LookAtCamera("cam1", 320, 240, 260, {5300, 1500, -1400},
+                                                                     {300, 1000, -1400})};
+  ASSERT_TRUE(FuseReadings(side_by_side, {truth + Eigen::Vector2d(600, 0), truth + Eigen::Vector2d(-600, 0)}, &place));
+  EXPECT_LT((place - truth).norm(), 200) << place.transpose();
+  EXPECT_GT(place.x(), truth.x());
+}
+
 }  // namespace
 }  // namespace jgpm
