@@ -760,6 +760,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   const bool behind = !left && recent && bad_frames_ > 0 && Behind(out, frame);
   if (behind || (!left && bad_frames_ >= options_.lost_frames && elsewhere)) {
     out.status = TrackStatus::kPredicted;
+    if (!hidden_) WalkOnAsSeen();
     hidden_ = true;
     behind_ = behind;
   } else if (nobody || bad_frames_ >= options_.lost_frames || left) {
@@ -785,6 +786,19 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   if (legs_by_phase_ && tries_other_legs_) TryOtherLegs(frame, &out);
   finish(&out);
   return out;
+}
+
+void Tracker::WalkOnAsSeen() {
+  if (!options_.walk_on_as_seen || !legs_by_phase_ || !(travel_.Speed() >= options_.travel.min_speed_mm_s)) return;
+  const PlacementIndex p = state_model_->placement();
+  const Eigen::VectorXd mean = filter_->Mean();
+  const double going = mean[p.heading] + (mean[p.rate] < 0 ? std::numbers::pi : 0);
+  const double turn = std::remainder(travel_.Direction() - going, 2 * std::numbers::pi);
+  const double speed = travel_.Speed();
+  filter_->Transform([&](double* s) {
+    s[p.heading] += turn;
+    state_model_->Pace(speed, 1, s, /*cover=*/true);
+  });
 }
 
 bool OtherLegOrder(double phase, const Eigen::Vector2d& last, double dt) {

@@ -29,6 +29,7 @@ bool TravelCheck::Against(double time_s, const Eigen::Vector2d& floor_mm, double
   if (span >= options_.window_s) {
     const Eigen::Vector2d travel = floor_mm - seen_.front().floor_mm;
     speed_mm_s_ = travel.norm() / span;
+    direction_rad_ = std::atan2(travel.x(), travel.y());
     const Eigen::Vector2d direction(std::sin(direction_rad), std::cos(direction_rad));
     against = travel.norm() >= options_.min_speed_mm_s * span &&
               travel.dot(direction) < std::cos(options_.max_angle_deg * std::numbers::pi / 180) * travel.norm();

@@ -52,6 +52,8 @@ class TravelCheck {
   // The estimates' speed over the window at the last Against (mm/s), whichever way they
   // went; < 0 while the window is not yet full (after a Clear).
   double Speed() const { return speed_mm_s_; }
+  // And which way (radians about +y, as direction_rad); meaningless while Speed() < 0.
+  double Direction() const { return direction_rad_; }
 
  private:
   struct Seen {
@@ -62,6 +64,7 @@ class TravelCheck {
   std::deque<Seen> seen_;
   int streak_ = 0;
   double speed_mm_s_ = -1;
+  double direction_rad_ = 0;
 };
 
 }  // namespace jgpm

@@ -65,12 +65,13 @@ void ManifoldStateModel::Predict(double dt, Random* r, double* s) const {
   Normalise(s);
 }
 
-void ManifoldStateModel::Pace(double speed_mm_s, double share, double* s) const {
+void ManifoldStateModel::Pace(double speed_mm_s, double share, double* s, bool cover) const {
   const double stride = table_.StrideMm(s[1], s[2]) * s[7];
   if (!(stride > 0) || !(speed_mm_s >= 0)) return;
   // On the cadence's size, its sign apart: to a stop, s[6] + (0 - s[6]) is +0 either way.
   const double size = std::abs(s[6]);
-  const double target = speed_mm_s < d_.stop_speed_mm_s ? speed_mm_s / stride : std::max(size, d_.walking_min_cadence);
+  const double target = cover || speed_mm_s < d_.stop_speed_mm_s ? speed_mm_s / stride
+                                                                  : std::max(size, d_.walking_min_cadence);
   s[6] = std::copysign(size + std::clamp(share, 0.0, 1.0) * (target - size), s[6]);
   Normalise(s);
 }

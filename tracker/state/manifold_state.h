@@ -89,7 +89,7 @@ class ManifoldStateModel : public StateModel {
   const Skeleton& skeleton() const override { return model_.skeleton(); }
   void Sample(const InitialGuess& guess, Random* random, double* state) const override;
   void Predict(double dt, Random* random, double* state) const override;
-  void Pace(double speed_mm_s, double share, double* state) const override;
+  void Pace(double speed_mm_s, double share, double* state, bool cover = false) const override;
   Eigen::VectorXd DiffusionStd() const override;
   void Normalise(double* state) const override;
   double Period(int dimension) const override;

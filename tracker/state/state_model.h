@@ -78,8 +78,10 @@ class StateModel {
   // Moves the rate `share` (0-1) of the way to the one the model gives a person seen going
   // `speed_mm_s` (>= 0; the tracker's pace: the speed its estimates are seen to go), its
   // direction kept (manifold_state.h: a stop's, the one that covers it; a walker's, at
-  // least a slow walk's). Models whose rate is not a cadence: unchanged.
-  virtual void Pace(double /*speed_mm_s*/, double /*share*/, double* /*state*/) const {}
+  // least a slow walk's; with `cover`, the one that covers the speed whatever it is: a
+  // prediction with no silhouettes to set the cadence). Models whose rate is not a
+  // cadence: unchanged.
+  virtual void Pace(double /*speed_mm_s*/, double /*share*/, double* /*state*/, bool /*cover*/ = false) const {}
   // Wraps periodic coordinates and clamps bounded ones.
   virtual void Normalise(double* state) const = 0;
   // Period of a coordinate (0: not periodic), for averaging states.

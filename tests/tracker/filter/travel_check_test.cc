@@ -44,7 +44,8 @@ TEST(TravelCheck, AWalkGoingAgainstItsDynamicsIsSeenOnceTheWindowAndStreakAreFul
 }
 
 // The speed over the window, by hand: unknown (< 0) until the window is full, then the
-// walk's, whichever way it goes and whether or not the check is on.
+// walk's, whichever way it goes and whether or not the check is on; and its direction,
+// towards (-0.6, 0.8) in (x, z), atan2(-0.6, 0.8) about +y.
 TEST(TravelCheck, TheSpeedIsTheWindowsTravelOverItsSpan) {
   TravelCheckOptions never;
   never.streak = 0;
@@ -55,6 +56,7 @@ TEST(TravelCheck, TheSpeedIsTheWindowsTravelOverItsSpan) {
       check.Against(t, Eigen::Vector2d(-600 * t, 800 * t), 0);  // 1 m/s
       if (t < options.window_s - 1e-9) EXPECT_LT(check.Speed(), 0) << k;
       else EXPECT_NEAR(check.Speed(), 1000, 1e-9) << k;
+      if (t >= options.window_s) EXPECT_NEAR(check.Direction(), std::atan2(-0.6, 0.8), 1e-12) << k;
     }
     check.Clear();
     EXPECT_LT(check.Speed(), 0);

@@ -135,7 +135,8 @@ TEST(ManifoldState, ANegativeCadenceWalksBackwards) {
 // stop_speed_mm_s, all the way (share 1): the noiseless walk then covers exactly that
 // speed along its heading, forwards or backwards as before; a share moves it that part of
 // the way; standing still takes it to min_cadence, its sign kept (a walker who stops keeps
-// the way they were going). Faster, the cadence is only kept at walking_min_cadence or more.
+// the way they were going). Faster, the cadence is only kept at walking_min_cadence or more,
+// unless asked to cover the speed.
 TEST(ManifoldState, ThePaceSetsTheCadenceThatCoversAStop) {
   const PoseTable table(Model(), {});
   const ManifoldDynamics quiet = Quiet();
@@ -163,6 +164,13 @@ TEST(ManifoldState, ThePaceSetsTheCadenceThatCoversAStop) {
     s[6] = cadence;
     model.Pace(1000, 1.0, s);
     EXPECT_DOUBLE_EQ(s[6], cadence);
+    // Covering it whatever it is (a prediction's: no silhouettes to set the cadence): the
+    // noiseless walk goes 1 m/s.
+    model.Pace(1000, 1.0, s, /*cover=*/true);
+    EXPECT_NEAR(s[6], std::copysign(1000 / stride, cadence), 1e-12);
+    s[3] = s[4] = 0;
+    model.Predict(0.5, &random, s);
+    EXPECT_NEAR(std::hypot(s[3], s[4]), 500, 1e-9);
   }
 }
 
