@@ -22,7 +22,7 @@ namespace {
 
 // The head's top above its bone end: the body model's head radius there (mm).
 constexpr double kHeadTopMm = 88;
-// How far apart two cameras' readings of one person may be (Guess): 3 m, each moved along
+// How far apart two cameras' readings of one person may be (MeetingPlaces): 3 m, each moved along
 // its line of sight by up to a quarter of 6 m (FuseReadings' spread; the ring's and a
 // webcam's walks are 3-7 m away), one nearer, the other farther.
 constexpr double kPairMm = 3000;
@@ -334,27 +334,9 @@ bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, con
       if (own.allFinite() && offset.norm() > options_.relocate_distance_mm)
         guess->other_floors_mm.push_back(guess->floor_mm + offset);
     }
-    // A camera whose blob the locator did not count as this person's, its reading over the
-    // locator's 1 m from the others' (a shadow and clutter in the blob move a reading along
-    // the line of sight by more): where its line of sight meets theirs (FuseReadings) is
-    // one more place, for blobs within kPairMm of this person's place. The silhouettes
-    // choose: made one in the locator, any two cameras' blobs (another walker's, clutter's)
-    // would have a place where their lines of sight meet.
-    for (const PersonSighting& other : seen[from - sightings.begin()].people) {
-      if (!other.found || !other.feet_seen || other.floor_mm == at.floor_mm ||
-          (other.floor_mm - at.floor_mm).norm() > kPairMm)
-        continue;
-      std::vector<Eigen::Vector2d> readings = at.camera_floor_mm;
-      bool adds = false, shared = false;
-      for (size_t c = 0; c < readings.size() && c < other.camera_floor_mm.size(); ++c) {
-        if (!other.camera_floor_mm[c].allFinite()) continue;
-        (readings[c].allFinite() ? shared : adds) = true;
-        readings[c] = other.camera_floor_mm[c];
-      }
-      Eigen::Vector2d fused;
-      if (adds && !shared && FuseReadings(cameras_, readings, &fused))
-        guess->other_floors_mm.push_back(guess->floor_mm + fused - at.floor_mm);
-    }
+    // And where another camera's blob's line of sight meets theirs (MeetingPlaces).
+    for (const Eigen::Vector2d& place : MeetingPlaces(at, seen[from - sightings.begin()].people))
+      guess->other_floors_mm.push_back(guess->floor_mm + place - at.floor_mm);
   }
   if (options_.known_size) {
     guess->size = 1, guess->size_std = 0;
@@ -522,10 +504,14 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   };
   // Where the masks alone put the person: looked for once a frame, when first needed.
   std::optional<PersonSighting> sighting;
+  std::vector<PersonSighting> everyone;  // all the sightings it was chosen from
   const auto located = [&]() -> const PersonSighting& {
-    if (!sighting)
-      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), frame.hidden,
-                              Painted(frame));
+    if (!sighting) {
+      everyone = LocatePeople(cameras_, frame.masks, 60, false, frame.hidden, Painted(frame));
+      sighting = ChoosePerson(everyone, PersonPreference::Near(predicted_floor_mm));
+      sighting->boxes.resize(cameras_.size());
+      sighting->areas.resize(cameras_.size());
+    }
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {
@@ -549,6 +535,15 @@ TrackedFrame Tracker::Step(const Frame& frame) {
       // With the person's height read, the relocated bodies take it.
       const double size = seen.height_mm > 0 && !options_.known_size ? SizeOf(seen.height_mm) : 0;
       filter_->Relocate(seen.floor_mm, 120, options_.relocate_share, frame.index, size, options_.relocate_size_std);
+    } else if (options_.starts_try_each_camera && seen.found && seen.feet_seen && HeadOnBlob(seen)) {
+      // The person where expected in some view, the estimate's head on their blob, but
+      // perhaps off in depth along that camera's line of sight, which another camera's
+      // blob, not counted as theirs, would say: where the lines of sight meet.
+      for (const Eigen::Vector2d& place : MeetingPlaces(seen, everyone)) {
+        if ((place - predicted_floor_mm).norm() <= options_.relocate_distance_mm) continue;
+        filter_->Relocate(place, 120, options_.relocate_share, frame.index, 0, 0);
+        break;
+      }
     }
   }
   if (hidden_ && !frame.dropped) {
@@ -953,6 +948,26 @@ double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / m
 const std::vector<cv::Mat>& Tracker::Painted(const Frame& frame) const {
   static const std::vector<cv::Mat> none;
   return options_.hidden_is_painted ? frame.hidden : none;
+}
+
+std::vector<Eigen::Vector2d> Tracker::MeetingPlaces(const PersonSighting& at,
+                                                   const std::vector<PersonSighting>& people) const {
+  std::vector<Eigen::Vector2d> places;
+  for (const PersonSighting& other : people) {
+    if (!other.found || !other.feet_seen || other.floor_mm == at.floor_mm ||
+        (other.floor_mm - at.floor_mm).norm() > kPairMm)
+      continue;
+    std::vector<Eigen::Vector2d> readings = at.camera_floor_mm;
+    bool adds = false, shared = false;
+    for (size_t c = 0; c < readings.size() && c < other.camera_floor_mm.size(); ++c) {
+      if (!other.camera_floor_mm[c].allFinite()) continue;
+      (readings[c].allFinite() ? shared : adds) = true;
+      readings[c] = other.camera_floor_mm[c];
+    }
+    Eigen::Vector2d fused;
+    if (adds && !shared && FuseReadings(cameras_, readings, &fused)) places.push_back(fused);
+  }
+  return places;
 }
 
 bool Tracker::HeadOnBlob(const PersonSighting& seen) const {

@@ -439,6 +439,13 @@ class Tracker {
   // Whether the particles' mean has its head at the top of one of `seen`'s blobs
   // (TrackerOptions::head_on_blob).
   bool HeadOnBlob(const PersonSighting& seen) const;
+  // Where `at`'s cameras' lines of sight meet those of another of `people` seen only by
+  // cameras `at` lacks, within kPairMm (FuseReadings): a camera whose blob the locator did
+  // not count as this person's, its reading over the locator's 1 m from theirs (a shadow
+  // and clutter in a blob move a reading along the line of sight by more). Places for the
+  // silhouettes to choose among (Guess, the second looks), not sightings: any two cameras'
+  // blobs (another walker's, clutter's) have a place where their lines of sight meet.
+  std::vector<Eigen::Vector2d> MeetingPlaces(const PersonSighting& at, const std::vector<PersonSighting>& people) const;
   // The frame's painted occluders, when its hidden pixels are only those
   // (TrackerOptions::hidden_is_painted); else none.
   const std::vector<cv::Mat>& Painted(const Frame& frame) const;
