@@ -22,9 +22,9 @@ namespace {
 
 // The head's top above its bone end: the body model's head radius there (mm).
 constexpr double kHeadTopMm = 88;
-// How far apart two cameras' readings of one person may be (MeetingPlaces): 3 m, each moved along
-// its line of sight by up to a quarter of 6 m (FuseReadings' spread; the ring's and a
-// webcam's walks are 3-7 m away), one nearer, the other farther.
+// How far apart two cameras' readings of one person may be (MeetingPlaces): 3 m, each
+// moved along its line of sight by up to a quarter of 6 m (FuseReadings' spread; the
+// ring's and a webcam's walks are 3-7 m away), one nearer, the other farther.
 constexpr double kPairMm = 3000;
 
 cv::Rect Grow(const cv::Rect& box, double margin, int width, int height) {

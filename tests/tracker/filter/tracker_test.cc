@@ -1296,14 +1296,13 @@ TEST(Tracker, AStartTriesEachCamerasReadingOfThePlace) {
   EXPECT_LT(placed, 100);
 }
 
-// One camera of two reads the walker over a metre off along its line of sight (a shadow
-// drawn from the feet towards it, as on the harsh 2-camera clip), so the locator counts
-// the two cameras' blobs as two people and starts from one: where the two lines of sight
-// meet (FuseReadings) is among the places the start tries, and the first frame is there.
-TEST(Tracker, AStartTriesWhereTwoCamerasLinesOfSightMeet) {
+// The shared clip's first `count` frames with a shadow drawn from the feet towards camera
+// 0 (a strip a third of the blob wide, a quarter of its height long, below it), as on the
+// harsh 2-camera clip: camera 0 reads the walker about a metre nearer.
+std::vector<Frame> ShadowTowardsCamera0(int count) {
   const Fixture& f = Shared();
   std::vector<Frame> frames;
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < count; ++k) {
     Frame frame = ClipFrameAt(f.truth, f.clip, k);
     cv::Mat& mask = frame.masks[0];
     const cv::Rect box = cv::boundingRect(mask);
@@ -1311,6 +1310,16 @@ TEST(Tracker, AStartTriesWhereTwoCamerasLinesOfSightMeet) {
     mask(cv::Rect(box.x + box.width / 2 - width / 2, y, width, std::min(box.height / 4, mask.rows - 1 - y))).setTo(255);
     frames.push_back(std::move(frame));
   }
+  return frames;
+}
+
+// One camera of two reads the walker over a metre off along its line of sight (a shadow
+// from the feet towards it, ShadowTowardsCamera0), so the locator counts
+// the two cameras' blobs as two people and starts from one: where the two lines of sight
+// meet (FuseReadings) is among the places the start tries, and the first frame is there.
+TEST(Tracker, AStartTriesWhereTwoCamerasLinesOfSightMeet) {
+  const Fixture& f = Shared();
+  const std::vector<Frame> frames = ShadowTowardsCamera0(5);
   const Eigen::Vector3d root = f.truth.frames[4].joints_mm.col(0);
   const Eigen::Vector2d truth(root.x(), root.z());
   std::vector<Eigen::Vector2d> alone;
@@ -1336,8 +1345,8 @@ TEST(Tracker, AStartTriesWhereTwoCamerasLinesOfSightMeet) {
   EXPECT_LT(placed, 150);
 }
 
-// The shared clip with a shadow drawn from the feet towards camera 0 in every frame (a
-// quarter of the blob's height more below them, as in the test above), and the estimate
+// The shared clip with a shadow from the feet towards camera 0 in every frame
+// (ShadowTowardsCamera0), and the estimate
 // started where that camera alone reads the walker: a metre off along its line of sight,
 // its drawing on the walker's blob there, off the blob in camera 1. The second looks try
 // where the two cameras' lines of sight meet (Tracker::MeetingPlaces), and the estimate
@@ -1345,15 +1354,7 @@ TEST(Tracker, AStartTriesWhereTwoCamerasLinesOfSightMeet) {
 // silhouettes alone pull it in by frame 14, 600 mm off over them).
 TEST(Tracker, AnEstimateOffAlongOneCamerasLineOfSightIsBroughtToWhereTheyMeet) {
   const Fixture& f = Shared();
-  std::vector<Frame> frames;
-  for (int k = 0; k < kFrames; ++k) {
-    Frame frame = ClipFrameAt(f.truth, f.clip, k);
-    cv::Mat& mask = frame.masks[0];
-    const cv::Rect box = cv::boundingRect(mask);
-    const int width = std::max(2, box.width / 3), y = box.y + box.height;
-    mask(cv::Rect(box.x + box.width / 2 - width / 2, y, width, std::min(box.height / 4, mask.rows - 1 - y))).setTo(255);
-    frames.push_back(std::move(frame));
-  }
+  const std::vector<Frame> frames = ShadowTowardsCamera0(kFrames);
   const PersonSighting alone = LocatePerson({f.truth.cameras[0]}, {frames[0].masks[0]});
   ASSERT_TRUE(alone.found && alone.feet_seen);
   for (const bool meet : {true, false}) {
