@@ -504,8 +504,10 @@ bool FuseReadings(const std::vector<Camera>& cameras, const std::vector<Eigen::V
 
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks, int min_blob_px,
                             const PersonPreference& prefer, const std::vector<cv::Mat>& hidden,
-                            const std::vector<cv::Mat>& painted) {
-  PersonSighting sighting = ChoosePerson(LocatePeople(cameras, masks, min_blob_px, false, hidden, painted), prefer);
+                            const std::vector<cv::Mat>& painted, std::vector<PersonSighting>* everyone) {
+  std::vector<PersonSighting> people = LocatePeople(cameras, masks, min_blob_px, false, hidden, painted);
+  PersonSighting sighting = ChoosePerson(people, prefer);
+  if (everyone) *everyone = std::move(people);
   sighting.boxes.resize(cameras.size());
   sighting.areas.resize(cameras.size());
   return sighting;

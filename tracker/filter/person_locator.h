@@ -122,9 +122,10 @@ PersonSighting ChoosePerson(const std::vector<PersonSighting>& people, const Per
 bool FuseReadings(const std::vector<Camera>& cameras, const std::vector<Eigen::Vector2d>& readings,
                   Eigen::Vector2d* place);
 
-// The preferred one of LocatePeople.
+// The preferred one of LocatePeople (all of whom go to `everyone`, when given).
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
                             int min_blob_px = 60, const PersonPreference& prefer = {},
-                            const std::vector<cv::Mat>& hidden = {}, const std::vector<cv::Mat>& painted = {});
+                            const std::vector<cv::Mat>& hidden = {}, const std::vector<cv::Mat>& painted = {},
+                            std::vector<PersonSighting>* everyone = nullptr);
 
 }  // namespace jgpm

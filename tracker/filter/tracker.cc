@@ -506,12 +506,9 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   std::optional<PersonSighting> sighting;
   std::vector<PersonSighting> everyone;  // all the sightings it was chosen from
   const auto located = [&]() -> const PersonSighting& {
-    if (!sighting) {
-      everyone = LocatePeople(cameras_, frame.masks, 60, false, frame.hidden, Painted(frame));
-      sighting = ChoosePerson(everyone, PersonPreference::Near(predicted_floor_mm));
-      sighting->boxes.resize(cameras_.size());
-      sighting->areas.resize(cameras_.size());
-    }
+    if (!sighting)
+      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), frame.hidden,
+                              Painted(frame), &everyone);
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {

@@ -303,7 +303,8 @@ struct TrackerOptions {
   // others and were lost (vtest.avi: 25 -> 29 ids).
   bool walk_on_as_seen = true;
   // Starts also try each camera's own reading of the place where it differs from the
-  // others' by more than relocate_distance_mm (Guess; InitialGuess::other_floors_mm).
+  // others' by more than relocate_distance_mm (Guess; InitialGuess::other_floors_mm), and
+  // starts and second looks where two cameras' lines of sight meet (MeetingPlaces).
   bool starts_try_each_camera = true;
 
   bool Check(std::string* why) const;
