@@ -82,6 +82,7 @@ class BitSilhouetteRenderer {
  public:
   explicit BitSilhouetteRenderer(const Camera& camera) : projector_(camera) {}
   const Camera& camera() const { return projector_.camera(); }
+  const CapsuleProjector& projector() const { return projector_; }
 
   // Draws the capsules into `mask` (the camera's size; not cleared first) and appends to
   // `outline` (may be null) points along each drawn capsule's outline (its two tangent

@@ -39,6 +39,7 @@ struct TrackArguments {
   bool no_body_shape = false;
   bool no_back_over = false;
   bool no_legs_trial = false;
+  bool no_shadow = false;
   bool full_body = false;
   bool no_overlay = false;
   bool show = false;
@@ -134,6 +135,7 @@ void RunTrack(TrackArguments a) {
   a.job.tracker.shape.enabled = !a.no_body_shape;
   if (a.no_back_over) a.job.tracker.start_backwards_s = 0;
   if (a.no_legs_trial) a.job.tracker.legs_trial_frames = 0;
+  a.job.tracker.shadow.enabled = !a.no_shadow;
   if (a.full_body) a.job.tracker.body_detail = BodyDetail::kFull;
   a.job.working.enabled = !a.full_resolution;
   a.job.source.clip_occluders = !a.no_clip_occluders;
@@ -222,6 +224,11 @@ void RunTrack(TrackArguments a) {
     std::printf("reflections in the floor cut from the masks in %d frames (--keep-reflections to keep them)\n",
                 result.reflection_frames);
   }
+  if (result.shadow_light_deg) {
+    std::printf("the masks hold the walker's shadow: a light from azimuth %.0f, %.0f degrees up, found at frame %d and "
+                "drawn with every body since (--no-shadow: neither)\n",
+                result.shadow_light_deg->x(), result.shadow_light_deg->y(), result.shadow_light_frame);
+  }
   std::printf("with reading the frames%s: %.1f frames/s\n",
               a.job.source.clip.empty() || a.job.source.clip_foreground ? " and background subtraction" : "",
               result.loop_seconds > 0 ? n / result.loop_seconds : 0.0);
@@ -280,6 +287,7 @@ struct BenchArguments {
   bool no_body_shape = false;
   bool no_back_over = false;
   bool no_legs_trial = false;
+  bool no_shadow = false;
   bool full_body = false;
   int threads = 0;
   std::string adapt = "none";
@@ -300,6 +308,7 @@ void RunBench(BenchArguments a) {
   a.bench.tracker.shape.enabled = !a.no_body_shape;
   if (a.no_back_over) a.bench.tracker.start_backwards_s = 0;
   if (a.no_legs_trial) a.bench.tracker.legs_trial_frames = 0;
+  a.bench.tracker.shadow.enabled = !a.no_shadow;
   if (a.full_body) a.bench.tracker.body_detail = BodyDetail::kFull;
   {
     std::error_code ec;
@@ -377,6 +386,9 @@ constexpr const char* kNoBackOverHelp =
 constexpr const char* kNoLegsTrialHelp =
     "do not give each start's other leg order a trial (tracked alongside for 10 frames from the particles half "
     "a walking cycle on, taken when it fits better: TrackerOptions::legs_trial_frames)";
+constexpr const char* kNoShadowHelp =
+    "do not look for the walker's shadow in the masks (a segmentation without shadow removal keeps it), nor "
+    "draw it with each body once its light is found (tracker/filter/shadow_light.h)";
 constexpr const char* kFullBodyHelp =
     "draw all 30 parts of the body model for every particle, as clips are rendered, instead of the "
     "tracker's 25 (each hand and the neck one part: BodyDetail::kTracking in body_model.h)";
@@ -508,6 +520,7 @@ void AddTrackCommands(CLI::App& app) {
   track->add_flag("--no-body-shape", a->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track->add_flag("--no-back-over", a->no_back_over, kNoBackOverHelp);
   track->add_flag("--no-legs-trial", a->no_legs_trial, kNoLegsTrialHelp);
+  track->add_flag("--no-shadow", a->no_shadow, kNoShadowHelp);
   track->add_flag("--full-body", a->full_body, kFullBodyHelp);
   track->add_option("--adapt", a->adapt, kAdaptHelp)->check(CLI::IsMember({"none", "posture"}))->capture_default_str();
   track->add_option("--threads", a->threads, "threads (0: all cores)")->check(CLI::Range(0, 256))->capture_default_str();
@@ -556,6 +569,7 @@ void AddTrackBench(CLI::App* bench) {
   track_bench->add_flag("--no-body-shape", b->no_body_shape, "the model's build: do not learn each region's width, the limbs' lengths and the floor's height (body_shape.h)");
   track_bench->add_flag("--no-back-over", b->no_back_over, kNoBackOverHelp);
   track_bench->add_flag("--no-legs-trial", b->no_legs_trial, kNoLegsTrialHelp);
+  track_bench->add_flag("--no-shadow", b->no_shadow, kNoShadowHelp);
   track_bench->add_flag("--full-body", b->full_body, kFullBodyHelp);
   track_bench->callback([b] { RunBench(*b); });
 }

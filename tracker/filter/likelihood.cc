@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "io/base/error.h"
+#include "tracker/body/cast_shadow.h"
 
 namespace jgpm {
 namespace {
@@ -77,6 +78,12 @@ CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::R
 double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
                                   const std::vector<CameraObservation>& observations, Workspace* w,
                                   std::vector<CameraScore>* scores) const {
+  return CostUnder(light_ ? &*light_ : nullptr, capsules, observations, w, scores);
+}
+
+double SilhouetteLikelihood::CostUnder(const Eigen::Vector3d* light, const std::vector<Capsule>& capsules,
+                                       const std::vector<CameraObservation>& observations, Workspace* w,
+                                       std::vector<CameraScore>* scores) const {
   JGPM_CHECK(observations.size() == renderers_.size());
   if (scores) scores->assign(renderers_.size(), CameraScore());
   double total = 0;
@@ -85,6 +92,8 @@ double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
     BitMask& canvas = w->canvas[c];
     w->outline.clear();
     renderers_[c].Draw(capsules, &canvas, &w->outline, options_.outline_step_px);
+    // The shadow only where the person is expected: the area term counts nothing beyond.
+    if (light && !o.empty()) DrawCastShadow(renderers_[c].projector(), capsules, *light, floor_mm_, o.region(), &canvas);
     // |S|, |S n O n R|, |S n grow(O n R)| over the rows drawn, |grow(S) n O n R| over them
     // and a row either side; then the canvas is blank again.
     int model = 0, overlap = 0, inside = 0, explained = 0;

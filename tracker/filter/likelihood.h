@@ -32,6 +32,7 @@
 // particle by exp(-beta * cost) with beta set by annealing.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -99,9 +100,23 @@ class SilhouetteLikelihood {
   double Cost(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,
               Workspace* workspace, std::vector<CameraScore>* scores = nullptr) const;
 
+  // The body's shadow on the floor (y = floor_mm) under a distant light from `light`, drawn
+  // with it within each camera's region; none when not given.
+  void SetShadow(const std::optional<Eigen::Vector3d>& light, double floor_mm = 0) {
+    light_ = light;
+    floor_mm_ = floor_mm;
+  }
+  const std::optional<Eigen::Vector3d>& light() const { return light_; }
+  // Cost with the shadow cast from `light` (none when null) instead of the one set.
+  double CostUnder(const Eigen::Vector3d* light, const std::vector<Capsule>& capsules,
+                   const std::vector<CameraObservation>& observations, Workspace* workspace,
+                   std::vector<CameraScore>* scores = nullptr) const;
+
  private:
   std::vector<BitSilhouetteRenderer> renderers_;
   LikelihoodOptions options_;
+  std::optional<Eigen::Vector3d> light_;
+  double floor_mm_ = 0;
 };
 
 }  // namespace jgpm

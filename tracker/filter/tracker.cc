@@ -76,6 +76,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
   else if (legs_trial_frames < 0) problem = "legs_trial_frames must be >= 0 (0: never)";
   else if (!(legs_trial_margin >= 0)) problem = "legs_trial_margin must be >= 0";
+  else if (!shadow.Check(nullptr)) problem = "shadow: every, looks, idle_after and idle_every must be >= 1, min_gain >= 0";
   else if (turn_every < 0) problem = "turn_every must be >= 0 (0: never)";
   else if (reverse_every < 0) problem = "reverse_every must be >= 0 (0: never)";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))
@@ -119,7 +120,8 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
         shape.lengths = shape.lengths && !options.known_size;  // the subject's own bones
         return shape;
       }()),
-      travel_(options.travel) {
+      travel_(options.travel),
+      shadow_light_(options.shadow) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("tracking options", why);
   if (cameras.empty()) ThrowInputError("cameras", "the tracker needs at least one camera");
@@ -472,6 +474,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   }
   const double dt = fresh_ ? 0.0 : frame.time_s - last_time_s_;
   if (!fresh_) filter_->Predict(dt, frame.index);
+  likelihood_.SetShadow(shadow_light_.light(), shape_.drawn().floor_mm);
   if (legs_by_phase_ && !fresh_ && !frame.dropped && options_.mirror_every > 0 &&
       frames_since_start_ < options_.mirror_frames) {
     filter_->Shift(0, 0.5, options_.mirror_every);
@@ -680,6 +683,20 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     body_.Place(out.joints_mm, out.size * out.width, out.build.widths, out.build.garment, &capsules);
     likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
     if (out.MeanIou() >= options_.lost_iou) {
+      if (shadow_light_.Due()) {
+        // The estimate scored under each light to try, on the pool's threads.
+        shadow_light_.Look([&](const std::vector<std::optional<Eigen::Vector3d>>& lights) {
+          std::vector<double> costs(lights.size());
+          std::vector<SilhouetteLikelihood::Workspace> spaces;
+          for (int w = 0; w < pool_.size(); ++w) spaces.push_back(likelihood_.NewWorkspace());
+          pool_.For(static_cast<int>(lights.size()), [&](int begin, int end, int worker) {
+            for (int i = begin; i < end; ++i)
+              costs[i] = likelihood_.CostUnder(lights[i] ? &*lights[i] : nullptr, capsules, observations, &spaces[worker]);
+          });
+          return costs;
+        });
+        if (shadow_light_.light()) shadow_light_frame_ = frame.index;
+      }
       if (alignment_.active()) AlignViews(capsules, observations, out);
       int views = 0;  // cameras that see the person and draw them
       for (const CameraScore& c : out.cameras) views += c.observed_px > 0 && c.model_px > 0;
@@ -872,6 +889,7 @@ std::unique_ptr<Tracker> Tracker::Follower(int layers) const {
   follower->shape_ = shape_;
   follower->ApplyBuild();
   follower->alignment_ = alignment_;
+  follower->shadow_light_ = shadow_light_;
   if (refiner_ && follower->refiner_) follower->refiner_->ContinueFrom(*refiner_);
   follower->started_ = true;
   follower->frames_since_start_ = frames_since_start_;

@@ -131,6 +131,7 @@
 #include "tracker/filter/body_shape.h"
 #include "tracker/filter/likelihood.h"
 #include "tracker/filter/person_locator.h"
+#include "tracker/filter/shadow_light.h"
 #include "tracker/filter/pose_refiner.h"
 #include "tracker/filter/thread_pool.h"
 #include "tracker/filter/travel_check.h"
@@ -306,6 +307,9 @@ struct TrackerOptions {
   // others' by more than relocate_distance_mm (Guess; InitialGuess::other_floors_mm), and
   // starts and second looks where two cameras' lines of sight meet (MeetingPlaces).
   bool starts_try_each_camera = true;
+  // The walker's shadow in the masks, and the light casting it, found and then drawn with
+  // every particle (shadow_light.h). Several people tracked at once do not look for it.
+  ShadowLightOptions shadow;
 
   bool Check(std::string* why) const;
 };
@@ -363,6 +367,10 @@ class Tracker {
   // phase is more than a quarter cycle off the last one's walked on (the particles hold
   // both orders for a while after the search, and the other one may take over).
   int leg_order_epoch() const { return leg_order_epoch_; }
+  // The light casting the walker's shadow in the masks, once found (TrackerOptions::shadow),
+  // and the frame it was found at (-1: none).
+  const ShadowLight& shadow_light() const { return shadow_light_; }
+  int shadow_light_frame() const { return shadow_light_frame_; }
   // The other leg order's second tracker while its trial runs (TryOtherLegs), else null.
   const Tracker* legs_trial() const { return other_legs_.get(); }
 
@@ -511,6 +519,8 @@ class Tracker {
   double mirror_evidence_ = 0;  // decayed sum of cost(estimate) - cost(half a cycle on)
   int mirror_streak_ = 0;       // frames in a row where half a cycle on fitted better
   TravelCheck travel_;          // the estimates' travel against their dynamics
+  ShadowLight shadow_light_;    // the light casting the shadow the masks hold
+  int shadow_light_frame_ = -1;
   double model_height_mm_ = 0;  // floor to top of head at size 1
   // The other leg order's trial (TryOtherLegs): due once per start, the second tracker
   // while it runs, and both orders' costs summed over its frames so far.

@@ -409,6 +409,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   }
   if (ahead) ahead->Stop();  // the sources' counts below are the reading thread's
   if (reflections) result.reflection_frames = reflections->frames_cut();
+  if (tracker.shadow_light().light()) {
+    result.shadow_light_deg = tracker.shadow_light().Angles();
+    result.shadow_light_frame = tracker.shadow_light_frame();
+  }
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
   for (const PeopleFrame& f : result.people) run.tracking_seconds += f.seconds;
   result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

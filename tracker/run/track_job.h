@@ -71,6 +71,10 @@ struct TrackJobResult {
   std::vector<Camera> working_cameras;  // each camera as the tracker saw it (the working
                                         // resolution's; run.cameras are the full-size ones)
   int reflection_frames = 0;  // frames with a reflection in the floor cut from some mask
+  // The walker's shadow found in the masks: its light's azimuth and elevation (degrees,
+  // ShadowLight::Direction's) and the frame it was found at; none when not found.
+  std::optional<Eigen::Vector2d> shadow_light_deg;
+  int shadow_light_frame = -1;
 };
 
 // Each tracked frame as it is given; the frames the tracker has read so far (a start's

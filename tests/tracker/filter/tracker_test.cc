@@ -27,6 +27,7 @@
 #include "prior/model/train.h"
 #include "prior/prior_test_support.h"
 #include "test_support.h"
+#include "tracker/clip/clip_scene.h"
 #include "tracker/clip/synthetic_clip.h"
 #include "tracker/run/track_job.h"
 #include "tracker/run/track_metrics.h"
@@ -1246,6 +1247,49 @@ TEST(Tracker, AWalkerWhoStopsIsTrackedStandingStill) {
   }
 }
 
+// Masks that keep the walker's shadow (the clip's observed masks with --shadow): the
+// tracker finds the light that cast it (the clip's own, ClipScene's) and draws each body's
+// shadow from then on, which explains the masks better than the same run without.
+TEST(Tracker, AShadowInTheMasksIsFoundAndDrawnWithEveryBody) {
+  const Fixture& f = Shared();
+  constexpr int kClipFrames = 60;
+  const Walk0701 walk;
+  ClipOptions clip = SmallClip(kClipFrames);
+  clip.scene.shadow = true;
+  clip.seed = 3;
+  test::TempDir dir;
+  RenderClip(walk.skeleton, walk.motion, walk.source, {}, clip, (dir.path() / "clip").string());
+  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
+  const Eigen::Vector3d light =
+      ClipScene(clip.scene, truth.cameras, {truth.frames[0].joints_mm}, clip.seed).light();
+  const auto run = [&](bool shadow, std::optional<Eigen::Vector3d>* found, int* found_at) {
+    TrackerOptions options;
+    options.annealing.particles = 150;
+    options.shadow.enabled = shadow;
+    options.shadow.every = 2;
+    Tracker tracker(*f.loaded, truth.cameras, options);
+    double cost = 0;  // over the last 15 frames
+    for (int k = 0; k < kClipFrames; ++k) {
+      const TrackedFrame out = tracker.Step(ClipFrameAt(truth, dir.path() / "clip", k));
+      if (k >= kClipFrames - 15)
+        for (const CameraScore& c : out.cameras) cost += c.cost / 15;
+    }
+    *found = tracker.shadow_light().light();
+    *found_at = tracker.shadow_light_frame();
+    return cost;
+  };
+  std::optional<Eigen::Vector3d> found, none;
+  int found_at = -1, never = -1;
+  const double with = run(true, &found, &found_at), without = run(false, &none, &never);
+  ASSERT_TRUE(found.has_value());
+  const double off_deg = std::acos(std::clamp(found->dot(light), -1.0, 1.0)) * 180 / std::numbers::pi;
+  std::printf("the light found at frame %d, %.1f degrees off; the last 15 frames cost %.3f a frame with the shadow "
+              "drawn, %.3f without\n", found_at, off_deg, with, without);
+  EXPECT_LT(off_deg, 6);
+  EXPECT_FALSE(none.has_value());
+  EXPECT_LT(with, 0.8 * without);
+}
+
 // Two cameras whose blobs hold a shadow cast towards them, attached at the feet, and
 // one whose blob is the walker alone: the shadowed two read the place too near them and
 // agree with each other, and the median of the three readings is theirs. The start tries
@@ -1379,7 +1423,9 @@ TEST(Tracker, AnEstimateOffAlongOneCamerasLineOfSightIsBroughtToWhereTheyMeet) {
     }
     std::printf("%s: started %.0f mm off, %.0f over frames 5-14; root off by (mm):%s\n",
                 meet ? "where the lines of sight meet tried" : "not tried", start_off, after, line.c_str());
-    if (meet) EXPECT_LT(after, 150);
+    if (meet) {
+      EXPECT_LT(after, 150);
+    }
   }
 }
 
