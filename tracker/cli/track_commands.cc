@@ -225,8 +225,8 @@ void RunTrack(TrackArguments a) {
                 result.reflection_frames);
   }
   if (result.shadow_light_deg) {
-    std::printf("the masks hold the walker's shadow: a light from azimuth %.0f, %.0f degrees up, found at frame %d and "
-                "drawn with every body since (--no-shadow: neither)\n",
+    std::printf("the masks hold the walkers' shadows: a light from azimuth %.0f, %.0f degrees up, found at frame %d "
+                "and drawn with every body since (--no-shadow: neither)\n",
                 result.shadow_light_deg->x(), result.shadow_light_deg->y(), result.shadow_light_frame);
   }
   std::printf("with reading the frames%s: %.1f frames/s\n",

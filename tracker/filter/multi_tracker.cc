@@ -267,7 +267,6 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   options.split_merged_starts = true;  // as the birth saw them
   options.hidden_is_painted = false;   // the others' drawings are hidden too
   options.walk_on_as_seen = false;    // vtest.avi: 25 -> 29 ids (TrackerOptions)
-  options.shadow.enabled = false;     // one light for everyone: not looked for by each
   // Among others, a camera whose reading of the place differs is most likely seeing
   // someone else, and a body turned to any heading fits a neighbour: neither is tried
   // (the 3-walker crossing from its videos, 4 seeds: MOTA 0.976 -> 0.952 with turns of
@@ -283,6 +282,7 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   // start's first frame).
   options.person = PersonPreference::Near(c.places.front(), options_.birth_clear_mm);
   p->tracker = std::make_unique<Tracker>(model_, cameras_, options, table_);
+  if (shadow_light_) p->tracker->AdoptShadowLight(*shadow_light_);
   if (!p->tracker->StartFromFrames(frames, past)) return false;
   p->first_frame = first_frame;
   p->going_back = tracker_options_.start_backwards_s > 0;
@@ -357,6 +357,11 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     p->drawn.assign(cameras_.size(), cv::Mat());
     p->tracker->DrawEstimate(p->last, &p->drawn);
     GoBackOver(p, mine);
+    if (!shadow_light_ && p->tracker->shadow_light().light()) {
+      shadow_light_ = p->tracker->shadow_light();
+      shadow_light_frame_ = frame.index;
+      for (const auto& q : people_) q->tracker->AdoptShadowLight(*shadow_light_);
+    }
   }
   // Deaths: lost too long, unseen too long while nobody hides them, or one person followed
   // twice. Runs add up frame intervals (the first frame counts as one at 30 frames/s), and

@@ -75,6 +75,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -149,6 +150,10 @@ class MultiTracker {
 
   const MultiTrackerOptions& options() const { return options_; }
   const TrackerOptions& tracker_options() const { return tracker_options_; }
+  // The light casting the walkers' shadows in the masks, once found, and the frame it was
+  // found at (-1: none).
+  const std::optional<ShadowLight>& shadow_light() const { return shadow_light_; }
+  int shadow_light_frame() const { return shadow_light_frame_; }
   const BodyModel& body(int id) const;  // a person's body as drawn (alive or not)
 
   // Looks at the first frames of a source for everyone in view (a place seen in
@@ -213,6 +218,10 @@ class MultiTracker {
   std::vector<std::unique_ptr<Person>> people_;   // alive, by id
   std::vector<std::unique_ptr<Person>> ended_;    // kept for body(id)
   std::vector<Candidate> candidates_;
+  // The light casting the walkers' shadows, once anyone's tracker has found it: one scene,
+  // one light, given to everyone tracked and born since (Tracker::AdoptShadowLight).
+  std::optional<ShadowLight> shadow_light_;
+  int shadow_light_frame_ = -1;
   std::deque<Frame> recent_;  // unexplained masks of the last frames (start_frames)
   int next_id_ = 1;
   int looked_until_ = -1;     // frames Start has looked at already

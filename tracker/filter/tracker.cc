@@ -695,7 +695,11 @@ TrackedFrame Tracker::Step(const Frame& frame) {
           });
           return costs;
         });
-        if (shadow_light_.light()) shadow_light_frame_ = frame.index;
+        if (shadow_light_.light()) {
+          shadow_light_frame_ = frame.index;
+          // A trial's second tracker scores with the same shadows (its costs are compared).
+          if (other_legs_) other_legs_->AdoptShadowLight(shadow_light_);
+        }
       }
       if (alignment_.active()) AlignViews(capsules, observations, out);
       int views = 0;  // cameras that see the person and draw them
@@ -883,13 +887,14 @@ void Tracker::TryOtherLegs(const Frame& frame, TrackedFrame* out) {
 std::unique_ptr<Tracker> Tracker::Follower(int layers) const {
   TrackerOptions options = options_;
   options.annealing.layers = layers;
+  options.shadow.enabled = false;  // this one's light, when found, is the follower's
   auto follower = std::make_unique<Tracker>(model_, cameras_, options, table_);
   follower->tries_other_legs_ = false;
   follower->filter_->Reset(filter_->particles());
   follower->shape_ = shape_;
   follower->ApplyBuild();
   follower->alignment_ = alignment_;
-  follower->shadow_light_ = shadow_light_;
+  if (shadow_light_.light()) follower->shadow_light_ = shadow_light_;
   if (refiner_ && follower->refiner_) follower->refiner_->ContinueFrom(*refiner_);
   follower->started_ = true;
   follower->frames_since_start_ = frames_since_start_;

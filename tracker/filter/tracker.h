@@ -308,7 +308,8 @@ struct TrackerOptions {
   // starts and second looks where two cameras' lines of sight meet (MeetingPlaces).
   bool starts_try_each_camera = true;
   // The walker's shadow in the masks, and the light casting it, found and then drawn with
-  // every particle (shadow_light.h). Several people tracked at once do not look for it.
+  // every particle (shadow_light.h). Several people tracked at once each look for it, and
+  // the first found is everyone's (MultiTracker).
   ShadowLightOptions shadow;
 
   bool Check(std::string* why) const;
@@ -370,6 +371,8 @@ class Tracker {
   // The light casting the walker's shadow in the masks, once found (TrackerOptions::shadow),
   // and the frame it was found at (-1: none).
   const ShadowLight& shadow_light() const { return shadow_light_; }
+  // Takes `light`'s (found by another person's tracker in the same scene).
+  void AdoptShadowLight(const ShadowLight& light) { shadow_light_ = light; }
   int shadow_light_frame() const { return shadow_light_frame_; }
   // The other leg order's second tracker while its trial runs (TryOtherLegs), else null.
   const Tracker* legs_trial() const { return other_legs_.get(); }

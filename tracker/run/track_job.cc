@@ -412,6 +412,9 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   if (tracker.shadow_light().light()) {
     result.shadow_light_deg = tracker.shadow_light().Angles();
     result.shadow_light_frame = tracker.shadow_light_frame();
+  } else if (multi && multi->shadow_light()) {
+    result.shadow_light_deg = multi->shadow_light()->Angles();
+    result.shadow_light_frame = multi->shadow_light_frame();
   }
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
   for (const PeopleFrame& f : result.people) run.tracking_seconds += f.seconds;
