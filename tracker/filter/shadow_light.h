@@ -15,7 +15,7 @@
 // times, and its best is taken for the rest of the run (a scene's light does not move in
 // a clip's minutes; a restart keeps it). A light that explains nothing draws shadows
 // where the masks have none, which costs: without a shadow the gains are mostly below 0.
-// min_gain's rule: twice the largest mean gain a clip without a shadow gave (the suites'
+// min_gain's rule: about twice the largest mean gain a clip without a shadow gave (the suites'
 // clips, seed 1, after 6 looks: at most 0.021, the skirted monocular walk, falling to 0.005
 // by its 10th look; a coat -0.06, bare walks -0.3 to -0.5), under what shadows in view
 // gave (0.15-0.72 with two cameras or more). A webcam near the walk sees little of its

@@ -7,12 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <memory>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 
