@@ -4,8 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include <opencv2/imgproc.hpp>
-
 namespace jgpm {
 namespace {
 
@@ -105,18 +103,6 @@ void ForEachShadowPiece(const CapsuleProjector& projector, const std::vector<Cap
 }
 
 }  // namespace
-
-void DrawCastShadow(const CapsuleProjector& projector, const std::vector<Capsule>& capsules,
-                    const Eigen::Vector3d& light, double floor_mm, cv::Mat* image) {
-  if (image->empty()) return;
-  std::vector<cv::Point> polygon;
-  ForEachShadowPiece(projector, capsules, light, floor_mm, [&](const cv::Point2f* hull, int n) {
-    polygon.clear();
-    // fillConvexPoly takes fixed-point vertices: 4 fractional bits keep the sub-pixel place.
-    for (int i = 0; i < n; ++i) polygon.emplace_back(cvRound(hull[i].x * 16), cvRound(hull[i].y * 16));
-    cv::fillConvexPoly(*image, polygon, cv::Scalar(255), cv::LINE_8, 4);
-  });
-}
 
 void DrawCastShadow(const CapsuleProjector& projector, const std::vector<Capsule>& capsules,
                     const Eigen::Vector3d& light, double floor_mm, const cv::Rect& clip, BitMask* mask) {

@@ -21,13 +21,10 @@
 
 namespace jgpm {
 
-// Adds 255 to `image` (CV_8UC1 of the camera's size) where the floor, the plane y =
-// floor_mm, lies in the shadow of `capsules` under a light from the unit direction `light`
-// (towards it; light.y() > 0), as `projector`'s camera sees it.
-void DrawCastShadow(const CapsuleProjector& projector, const std::vector<Capsule>& capsules, const Eigen::Vector3d& light,
-                    double floor_mm, cv::Mat* image);
-// The same into a packed mask, only within `clip` (a pixel is in when its centre is inside
-// a piece's polygon, as for the bodies' silhouettes).
+// Sets the pixels of `mask` (the camera's size), within `clip`, where the floor, the plane
+// y = floor_mm, lies in the shadow of `capsules` under a light from the unit direction
+// `light` (towards it; light.y() > 0), as `projector`'s camera sees it: a pixel is in when
+// its centre is inside a piece's polygon, as for the bodies' silhouettes.
 void DrawCastShadow(const CapsuleProjector& projector, const std::vector<Capsule>& capsules,
                     const Eigen::Vector3d& light, double floor_mm, const cv::Rect& clip, BitMask* mask);
 

@@ -35,6 +35,13 @@ cv::Mat RayCastShadow(const Camera& camera, const std::vector<Capsule>& parts, c
   return shadow;
 }
 
+// The shadow drawn into a packed mask over the whole image, as a CV_8U image.
+cv::Mat Drawn(const Camera& camera, const std::vector<Capsule>& parts, const Eigen::Vector3d& light, double floor_mm) {
+  BitMask mask(camera.width, camera.height);
+  DrawCastShadow(CapsuleProjector(camera), parts, light, floor_mm, cv::Rect(0, 0, camera.width, camera.height), &mask);
+  return mask.ToMat();
+}
+
 // Pixels where the two differ that are more than a pixel from the oracle's edge (the
 // polygons' chords and the fill's rounding stay within it), and the overlap's IoU.
 void Compare(const cv::Mat& drawn, const cv::Mat& truth, int* far_off, double* iou) {
@@ -58,8 +65,7 @@ TEST(DrawCastShadow, MatchesARayCastShadowThroughLevelHighAndDistortedCameras) {
     for (const auto& [elevation, azimuth] : {std::pair{25.0, 0.0}, {40.0, 100.0}, {55.0, 200.0}, {70.0, 290.0}}) {
       const Eigen::Vector3d light = Light(elevation, azimuth);
       for (const double floor : {0.0, 60.0}) {
-        cv::Mat drawn(camera.height, camera.width, CV_8U, cv::Scalar(0));
-        DrawCastShadow(CapsuleProjector(camera), parts, light, floor, &drawn);
+        const cv::Mat drawn = Drawn(camera, parts, light, floor);
         const cv::Mat truth = RayCastShadow(camera, parts, light, floor);
         int far_off;
         double iou;
@@ -67,8 +73,9 @@ TEST(DrawCastShadow, MatchesARayCastShadowThroughLevelHighAndDistortedCameras) {
         SCOPED_TRACE(camera.name + " elevation " + std::to_string(elevation) + " floor " + std::to_string(floor));
         const int area = cv::countNonZero(truth);
         ASSERT_GT(area, 250);
-        // The fill takes every pixel the outline touches: a pixel's ring more than the
-        // ray-cast's centres, a sixth of a 300-pixel shadow.
+        // A pixel is in when its centre is, in both, but the polygons' chords and the
+        // oracle's floor points differ along the outline: a pixel's ring at most, a sixth of
+        // a 300-pixel shadow.
         EXPECT_GT(iou, 0.75);
         // Beyond that ring: the polygons' chords, and the lens bending their edges.
         EXPECT_LE(far_off, std::max(3, area / 100));
@@ -81,10 +88,8 @@ TEST(DrawCastShadow, MatchesARayCastShadowThroughLevelHighAndDistortedCameras) {
 
 TEST(DrawCastShadow, ALightAtOrBelowTheHorizonCastsNothingOnTheFloor) {
   const Camera camera = LookAtCamera("level", 160, 120, 150, {0, 1500, 0}, {0, 600, 4000});
-  cv::Mat drawn(camera.height, camera.width, CV_8U, cv::Scalar(0));
-  DrawCastShadow(CapsuleProjector(camera), Figure({0, 0, 4000}), Light(0, 30), 0, &drawn);
-  DrawCastShadow(CapsuleProjector(camera), Figure({0, 0, 4000}), Light(-20, 30), 0, &drawn);
-  EXPECT_EQ(cv::countNonZero(drawn), 0);
+  EXPECT_EQ(cv::countNonZero(Drawn(camera, Figure({0, 0, 4000}), Light(0, 30), 0)), 0);
+  EXPECT_EQ(cv::countNonZero(Drawn(camera, Figure({0, 0, 4000}), Light(-20, 30), 0)), 0);
 }
 
 TEST(DrawCastShadow, AShadowBehindTheCameraIsLeftOut) {
@@ -93,8 +98,7 @@ TEST(DrawCastShadow, AShadowBehindTheCameraIsLeftOut) {
   const Camera camera = LookAtCamera("near", 160, 120, 150, {0, 1500, 0}, {0, 0, 3000});
   const std::vector<Capsule> parts = Figure({0, 0, 1800});
   const Eigen::Vector3d light = Light(30, 0);  // from +z: the shadow falls towards -z
-  cv::Mat drawn(camera.height, camera.width, CV_8U, cv::Scalar(0));
-  DrawCastShadow(CapsuleProjector(camera), parts, light, 0, &drawn);
+  const cv::Mat drawn = Drawn(camera, parts, light, 0);
   const cv::Mat truth = RayCastShadow(camera, parts, light, 0);
   // What is drawn is shadow the camera sees (a part whose shadow reaches behind the
   // camera is left out whole, not drawn wrapped round the image).
