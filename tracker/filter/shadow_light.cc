@@ -24,10 +24,14 @@ Eigen::Vector3d ShadowLight::Direction(double azimuth_deg, double elevation_deg)
   return {std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
 }
 
+Eigen::Vector2d ShadowLight::AnglesOf(const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d d = direction.normalized();
+  const double azimuth = std::atan2(d.x(), d.z()) * 180 / std::numbers::pi;
+  return {azimuth < 0 ? azimuth + 360 : azimuth, std::asin(std::clamp(d.y(), -1.0, 1.0)) * 180 / std::numbers::pi};
+}
+
 Eigen::Vector2d ShadowLight::Angles() const {
-  if (!light_) return Eigen::Vector2d::Constant(std::nan(""));
-  const double azimuth = std::atan2(light_->x(), light_->z()) * 180 / std::numbers::pi;
-  return {azimuth < 0 ? azimuth + 360 : azimuth, std::asin(std::clamp(light_->y(), -1.0, 1.0)) * 180 / std::numbers::pi};
+  return light_ ? AnglesOf(*light_) : Eigen::Vector2d::Constant(std::nan(""));
 }
 
 void ShadowLight::Coarse() {
@@ -44,7 +48,7 @@ void ShadowLight::Grid(double azimuth0, double azimuth_step, int azimuths, doubl
       if (elevation < 10 || elevation > 85) continue;
       candidates_.emplace_back(azimuth0 + i * azimuth_step, elevation);
     }
-  gains_.assign(candidates_.size(), 0);
+  recent_.clear();
   looks_ = 0;
 }
 
@@ -59,12 +63,18 @@ void ShadowLight::Look(const CostFunction& cost) {
   for (const Eigen::Vector2d& c : candidates_) lights.emplace_back(Direction(c.x(), c.y()));
   const std::vector<double> costs = cost(lights);
   if (costs.size() != lights.size() || !std::isfinite(costs[0])) return;
+  std::vector<double> gains(candidates_.size(), 0);
   for (size_t i = 0; i < candidates_.size(); ++i)
-    if (std::isfinite(costs[i + 1])) gains_[i] += costs[0] - costs[i + 1];
+    if (std::isfinite(costs[i + 1])) gains[i] = costs[0] - costs[i + 1];
+  recent_.push_back(std::move(gains));
+  if (static_cast<int>(recent_.size()) > options_.looks) recent_.pop_front();
   ++looks_, ++total_looks_;
   if (looks_ < options_.looks) return;
-  const size_t best = std::distance(gains_.begin(), std::max_element(gains_.begin(), gains_.end()));
-  if (gains_[best] / looks_ <= options_.min_gain) {
+  std::vector<double> sum(candidates_.size(), 0);
+  for (const std::vector<double>& look : recent_)
+    for (size_t i = 0; i < look.size(); ++i) sum[i] += look[i];
+  const size_t best = std::distance(sum.begin(), std::max_element(sum.begin(), sum.end()));
+  if (sum[best] / options_.looks <= options_.min_gain) {
     if (fine_) Coarse();  // the coarse grid's best did not hold: search it all again
     return;
   }

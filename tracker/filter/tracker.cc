@@ -464,6 +464,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   out.time_s = frame.time_s;
   auto finish = [&](TrackedFrame* f) {
     f->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    f->shadow_light = shadow_light_.light();
     last_time_s_ = frame.time_s;
   };
   if (!started_) LookFor(frame);
@@ -683,24 +684,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     body_.Place(out.joints_mm, out.size * out.width, out.build.widths, out.build.garment, &capsules);
     likelihood_.Cost(capsules, observations, &workspace, &out.cameras);
     if (out.MeanIou() >= options_.lost_iou) {
-      if (shadow_light_.Due()) {
-        // The estimate scored under each light to try, on the pool's threads.
-        shadow_light_.Look([&](const std::vector<std::optional<Eigen::Vector3d>>& lights) {
-          std::vector<double> costs(lights.size());
-          std::vector<SilhouetteLikelihood::Workspace> spaces;
-          for (int w = 0; w < pool_.size(); ++w) spaces.push_back(likelihood_.NewWorkspace());
-          pool_.For(static_cast<int>(lights.size()), [&](int begin, int end, int worker) {
-            for (int i = begin; i < end; ++i)
-              costs[i] = likelihood_.CostUnder(lights[i] ? &*lights[i] : nullptr, capsules, observations, &spaces[worker]);
-          });
-          return costs;
-        });
-        if (shadow_light_.light()) {
-          shadow_light_frame_ = frame.index;
-          // A trial's second tracker scores with the same shadows (its costs are compared).
-          if (other_legs_) other_legs_->AdoptShadowLight(shadow_light_);
-        }
-      }
+      if (shadow_light_.Due()) LookForShadowLight(out, capsules, observations, frame.index);
       if (alignment_.active()) AlignViews(capsules, observations, out);
       int views = 0;  // cameras that see the person and draw them
       for (const CameraScore& c : out.cameras) views += c.observed_px > 0 && c.model_px > 0;
@@ -1035,6 +1019,58 @@ void Tracker::SetEstimate(TrackedFrame* out) const {
   out->size = out->state[p.size];
   out->width = out->state[p.width];
   out->heading_rad = out->state[p.heading];
+}
+
+void Tracker::LookForShadowLight(const TrackedFrame& out, const std::vector<Capsule>& capsules,
+                                 const std::vector<CameraObservation>& observations, int frame) {
+  std::vector<Eigen::Vector3d> moves{Eigen::Vector3d::Zero()};
+  int seeing = -1, views = 0;
+  for (size_t c = 0; c < out.cameras.size(); ++c)
+    if (out.cameras[c].observed_px > 0 && out.cameras[c].model_px > 0) seeing = static_cast<int>(c), ++views;
+  if (views == 1 && seeing < static_cast<int>(cameras_.size())) {
+    Eigen::Vector3d sight = out.joints_mm.col(0) - cameras_[seeing].CentreInWorld();
+    sight.y() = 0;
+    if (sight.norm() > 1) {
+      sight.normalize();
+      for (int k = 1; k <= 3; ++k) moves.push_back(k * options_.relocate_distance_mm * sight);
+    }
+  }
+  std::vector<std::vector<Capsule>> placed(moves.size(), capsules);
+  for (size_t m = 1; m < moves.size(); ++m)
+    for (Capsule& part : placed[m]) part.from_mm += moves[m], part.to_mm += moves[m];
+  std::vector<SilhouetteLikelihood::Workspace> spaces;
+  for (int w = 0; w < pool_.size(); ++w) spaces.push_back(likelihood_.NewWorkspace());
+  // Each light's cost at each place (light-major), on the pool's threads.
+  const auto costs_at = [&](const std::vector<std::optional<Eigen::Vector3d>>& lights) {
+    const int n = static_cast<int>(moves.size());
+    std::vector<double> costs(lights.size() * n);
+    pool_.For(static_cast<int>(costs.size()), [&](int begin, int end, int worker) {
+      for (int i = begin; i < end; ++i) {
+        const std::optional<Eigen::Vector3d>& light = lights[i / n];
+        costs[i] = likelihood_.CostUnder(light ? &*light : nullptr, placed[i % n], observations, &spaces[worker]);
+      }
+    });
+    return costs;
+  };
+  shadow_light_.Look([&](const std::vector<std::optional<Eigen::Vector3d>>& lights) {
+    const std::vector<double> costs = costs_at(lights);
+    std::vector<double> best(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i)
+      best[i] = *std::min_element(costs.begin() + i * moves.size(), costs.begin() + (i + 1) * moves.size());
+    return best;
+  });
+  if (!shadow_light_.light()) return;
+  shadow_light_frame_ = frame;
+  // The particles go to the place where the light found explains the masks best.
+  const std::vector<double> costs = costs_at({shadow_light_.light()});
+  const Eigen::Vector3d& move = moves[std::distance(costs.begin(), std::min_element(costs.begin(), costs.end()))];
+  if (move.squaredNorm() > 0) {
+    const PlacementIndex p = state_model_->placement();
+    filter_->Shift(p.x, move.x());
+    filter_->Shift(p.z, move.z());
+  }
+  // A trial's second tracker scores with the same shadows (its costs are compared).
+  if (other_legs_) other_legs_->AdoptShadowLight(shadow_light_);
 }
 
 void Tracker::AlignViews(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,

@@ -330,6 +330,8 @@ struct TrackedFrame {
   double width = 1;                 // the body's widths' scale beyond the size
   Build build;                      // the person's build as drawn (body_shape.h): each
                                     // region's widths beyond that, the limbs' lengths
+  std::optional<Eigen::Vector3d> shadow_light;  // the light of the walkers' shadows, once
+                                                // found (ShadowLight; drawn in the overlay)
   std::vector<CameraScore> cameras;
   double ess = 0;                   // effective sample size / particles
   int evaluations = 0;              // likelihood evaluations spent on the frame
@@ -480,6 +482,18 @@ class Tracker {
   // left and turn and slow the walk (a webcam's walker behind a pillar: 20 degrees off and
   // 14% slow, 400 mm aside after a second hidden).
   void WalkOnAsSeen();
+  // One look for the light of the walkers' shadows (ShadowLight), with the estimate placed
+  // as `capsules`. A camera alone cannot tell how far away the person is: where a start
+  // read the far end of an attached shadow as the feet, the body stands nearer and covers
+  // the shadow itself (the harsh one-camera clip: 0.85 m nearer, no light gained over
+  // 0.03). So with one camera seeing the person each light is also tried with the body
+  // moved away from that camera along its line of sight (a shadow at the feet can only
+  // lower the blob's bottom, so read the person nearer, never farther), in steps of the
+  // locator's own error (relocate_distance_mm) to three of them, and the best place counts
+  // (for no light too: the moves alone gain nothing). A light found with the body farther
+  // moves the particles there.
+  void LookForShadowLight(const TrackedFrame& out, const std::vector<Capsule>& capsules,
+                          const std::vector<CameraObservation>& observations, int frame);
   // The cameras that see the estimate (placed as `capsules`) line their views up with it
   // a little more (ViewAlignment).
   void AlignViews(const std::vector<Capsule>& capsules, const std::vector<CameraObservation>& observations,

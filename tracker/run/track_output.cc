@@ -14,7 +14,9 @@
 #include "io/mocap/asf.h"
 #include "io/mocap/kinematics.h"
 #include "tracker/body/bit_silhouette.h"
+#include "tracker/body/cast_shadow.h"
 #include "tracker/clip/contact_sheet.h"
+#include "tracker/filter/shadow_light.h"
 
 namespace jgpm {
 namespace {
@@ -153,6 +155,17 @@ json EstimateJson(const TrackRun& run, const TrackedFrame& f) {
   return j;
 }
 
+// The light of the walkers' shadows, from the first frame that has it (the frame it was
+// found at): its azimuth and elevation (ShadowLight::Direction's), or null.
+json ShadowLightJson(const std::vector<const TrackedFrame*>& frames) {
+  for (const TrackedFrame* f : frames) {
+    if (!f->shadow_light) continue;
+    const Eigen::Vector2d angles = ShadowLight::AnglesOf(*f->shadow_light);
+    return {{"azimuth_deg", angles.x()}, {"elevation_deg", angles.y()}, {"found_at_frame", f->index}};
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optional<RunErrors>& errors) {
@@ -178,6 +191,9 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
                     {"predicted", predicted},
                     {"lost", lost},
                     {"evaluations_per_frame", n ? static_cast<double>(evaluations) / n : 0.0}};
+  std::vector<const TrackedFrame*> all;
+  for (const TrackedFrame& f : run.frames) all.push_back(&f);
+  out["summary"]["shadow_light"] = ShadowLightJson(all);
   if (errors) out["errors"] = {{"gait17", ErrorsJson(errors->gait17)}, {"bodytrack14", ErrorsJson(errors->bodytrack14)}};
   return out;
 }
@@ -205,8 +221,12 @@ json PeoplePosesJson(const TrackRun& run, const Skeleton& skeleton, const std::v
   json tracks = json::array();
   for (const auto& [id, span] : life) tracks.push_back({{"id", id}, {"first_frame", span.first}, {"last_frame", span.second}});
   const int n = static_cast<int>(frames.size());
+  std::vector<const TrackedFrame*> all;
+  for (const PeopleFrame& f : frames)
+    for (const PersonFrame& p : f.people) all.push_back(&p.frame);
   out["summary"] = {{"frames", n}, {"people", tracks},
-                    {"evaluations_per_frame", n ? static_cast<double>(evaluations) / n : 0.0}};
+                    {"evaluations_per_frame", n ? static_cast<double>(evaluations) / n : 0.0},
+                    {"shadow_light", ShadowLightJson(all)}};
   if (mot) {
     out["clear_mot"] = {{"mota", mot->mota}, {"motp_mm", mot->motp_mm}, {"true_person_frames", mot->truth},
                         {"pairs", mot->pairs}, {"misses", mot->misses}, {"false_positives", mot->false_positives},
@@ -270,12 +290,26 @@ cv::Mat Canvas(const cv::Mat& image, const Camera& camera) {
 }
 
 // The outline of the capsules' silhouette in `colour`.
-void DrawOutline(const Camera& camera, const std::vector<Capsule>& capsules, const cv::Scalar& colour, cv::Mat* out) {
-  BitMask mask(camera.width, camera.height);
-  BitSilhouetteRenderer(camera).Draw(capsules, &mask);
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(mask.ToMat(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  cv::drawContours(*out, contours, -1, colour, 1, cv::LINE_AA);
+// The estimate's outline; with the light of the walkers' shadows found, its shadow's
+// outline on the floor too, in the colour at half strength (what the likelihood draws with
+// the body: tracker/filter/shadow_light.h).
+void DrawOutline(const Camera& camera, const TrackedFrame& frame, const std::vector<Capsule>& capsules,
+                 const cv::Scalar& colour, cv::Mat* out) {
+  const BitSilhouetteRenderer renderer(camera);
+  const auto outline = [&](const BitMask& mask, const cv::Scalar& in) {
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(mask.ToMat(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    cv::drawContours(*out, contours, -1, in, 1, cv::LINE_AA);
+  };
+  if (frame.shadow_light) {
+    BitMask shadow(camera.width, camera.height);
+    DrawCastShadow(renderer.projector(), capsules, *frame.shadow_light, frame.build.floor_mm,
+                   cv::Rect(0, 0, camera.width, camera.height), &shadow);
+    outline(shadow, 0.5 * colour);
+  }
+  BitMask body(camera.width, camera.height);
+  renderer.Draw(capsules, &body);
+  outline(body, colour);
 }
 
 // Text in `colour` over a black edge, readable on any image.
@@ -290,7 +324,7 @@ cv::Mat OverlayFrame(const cv::Mat& image, const Camera& camera, const TrackedFr
                      const std::vector<Capsule>& capsules, const Skeleton& skeleton) {
   cv::Mat out = Canvas(image, camera);
   if (frame.state.size()) {
-    DrawOutline(camera, capsules, PersonColour(0), &out);
+    DrawOutline(camera, frame, capsules, PersonColour(0), &out);
     DrawSkeleton(skeleton, camera, frame.joints_mm, &out);
   }
   Label(std::to_string(frame.index) + " " + std::string(TrackStatusName(frame.status)), {4, 14}, 0.4,
@@ -312,7 +346,7 @@ cv::Mat OverlayPeopleFrame(const cv::Mat& image, const Camera& camera, int index
     if (p.frame.state.size() == 0 || p.frame.status == TrackStatus::kLost) continue;
     tracked += p.frame.status == TrackStatus::kTracked;
     const cv::Scalar colour = PersonColour(p.id);
-    DrawOutline(camera, p.capsules, colour, &out);
+    DrawOutline(camera, p.frame, p.capsules, colour, &out);
     DrawSkeleton(skeleton, camera, p.frame.joints_mm, &out);
     // The id over the head (the highest bone end), when it is in front of the camera.
     int top = 0;

@@ -72,12 +72,13 @@ struct TrackedMotion {
 TrackedMotion MakeTrackedMotion(const TrackRun& run, const GaitModel& model);
 
 // One overlay frame: the image (or grey) with the estimate's silhouette outline, skeleton
-// and a status line.
+// and a status line; once the light of the walkers' shadows is found, the outline of the
+// shadow drawn with the body, at half the outline's colour.
 cv::Mat OverlayFrame(const cv::Mat& image, const Camera& camera, const TrackedFrame& frame,
                      const std::vector<Capsule>& capsules, const Skeleton& skeleton);
 
-// Several people (jgpm track --people all): each one's outline in its own colour
-// (PersonColour), its skeleton and its id above its head; a line with the frame and how
+// Several people (jgpm track --people all): each one's outline (and shadow's) in its own
+// colour (PersonColour), its skeleton and its id above its head; a line with the frame and how
 // many are tracked.
 struct OverlayPerson {
   int id = 0;

@@ -30,6 +30,7 @@
 #include "tracker/clip/clip_scene.h"
 #include "tracker/clip/synthetic_clip.h"
 #include "tracker/run/track_job.h"
+#include "tracker/run/track_output.h"
 #include "tracker/run/track_metrics.h"
 
 namespace jgpm {
@@ -1247,22 +1248,33 @@ TEST(Tracker, AWalkerWhoStopsIsTrackedStandingStill) {
   }
 }
 
+// A clip of the test subject's walk rendered with --shadow (seed 3), its truth and the
+// light it was rendered with (ClipScene's).
+struct ShadowClip {
+  test::TempDir dir;
+  ClipGroundTruth truth;
+  Eigen::Vector3d light;
+  explicit ShadowClip(ClipOptions options) {
+    const Walk0701 walk;
+    options.scene.shadow = true;
+    options.seed = 3;
+    RenderClip(walk.skeleton, walk.motion, walk.source, {}, options, clip().string());
+    truth = ReadGroundTruth(clip() / "ground_truth.json");
+    light = ClipScene(options.scene, truth.cameras, {truth.frames[0].joints_mm}, options.seed).light();
+  }
+  fs::path clip() const { return dir.path() / "clip"; }
+};
+
 // Masks that keep the walker's shadow (the clip's observed masks with --shadow): the
 // tracker finds the light that cast it (the clip's own, ClipScene's) and draws each body's
 // shadow from then on, which explains the masks better than the same run without.
 TEST(Tracker, AShadowInTheMasksIsFoundAndDrawnWithEveryBody) {
   const Fixture& f = Shared();
   constexpr int kClipFrames = 60;
-  const Walk0701 walk;
-  ClipOptions clip = SmallClip(kClipFrames);
-  clip.scene.shadow = true;
-  clip.seed = 3;
-  test::TempDir dir;
-  RenderClip(walk.skeleton, walk.motion, walk.source, {}, clip, (dir.path() / "clip").string());
-  const ClipGroundTruth truth = ReadGroundTruth(dir.path() / "clip" / "ground_truth.json");
-  const Eigen::Vector3d light =
-      ClipScene(clip.scene, truth.cameras, {truth.frames[0].joints_mm}, clip.seed).light();
-  const auto run = [&](bool shadow, std::optional<Eigen::Vector3d>* found, int* found_at) {
+  const ShadowClip shadowed(SmallClip(kClipFrames));
+  const ClipGroundTruth& truth = shadowed.truth;
+  const Eigen::Vector3d& light = shadowed.light;
+  const auto run = [&](bool shadow, std::optional<Eigen::Vector3d>* found, int* found_at, TrackRun* written) {
     TrackerOptions options;
     options.annealing.particles = 150;
     options.shadow.enabled = shadow;
@@ -1270,9 +1282,9 @@ TEST(Tracker, AShadowInTheMasksIsFoundAndDrawnWithEveryBody) {
     Tracker tracker(*f.loaded, truth.cameras, options);
     double cost = 0;  // over the last 15 frames
     for (int k = 0; k < kClipFrames; ++k) {
-      const TrackedFrame out = tracker.Step(ClipFrameAt(truth, dir.path() / "clip", k));
+      written->frames.push_back(tracker.Step(ClipFrameAt(truth, shadowed.clip(), k)));
       if (k >= kClipFrames - 15)
-        for (const CameraScore& c : out.cameras) cost += c.cost / 15;
+        for (const CameraScore& c : written->frames.back().cameras) cost += c.cost / 15;
     }
     *found = tracker.shadow_light().light();
     *found_at = tracker.shadow_light_frame();
@@ -1280,7 +1292,9 @@ TEST(Tracker, AShadowInTheMasksIsFoundAndDrawnWithEveryBody) {
   };
   std::optional<Eigen::Vector3d> found, none;
   int found_at = -1, never = -1;
-  const double with = run(true, &found, &found_at), without = run(false, &none, &never);
+  TrackRun with_run, without_run;
+  with_run.cameras = without_run.cameras = truth.cameras;
+  const double with = run(true, &found, &found_at, &with_run), without = run(false, &none, &never, &without_run);
   ASSERT_TRUE(found.has_value());
   const double off_deg = std::acos(std::clamp(found->dot(light), -1.0, 1.0)) * 180 / std::numbers::pi;
   std::printf("the light found at frame %d, %.1f degrees off; the last 15 frames cost %.3f a frame with the shadow "
@@ -1288,6 +1302,58 @@ TEST(Tracker, AShadowInTheMasksIsFoundAndDrawnWithEveryBody) {
   EXPECT_LT(off_deg, 6);
   EXPECT_FALSE(none.has_value());
   EXPECT_LT(with, 0.8 * without);
+  // poses.json says which light, and when it was found.
+  const nlohmann::json written = PosesJson(with_run, f.loaded->skeleton(), std::nullopt)["summary"]["shadow_light"];
+  ASSERT_TRUE(written.is_object()) << written;
+  EXPECT_EQ(written["found_at_frame"].get<int>(), found_at);
+  const Eigen::Vector3d read =
+      ShadowLight::Direction(written["azimuth_deg"].get<double>(), written["elevation_deg"].get<double>());
+  EXPECT_LT((read - *found).norm(), 1e-9);
+  EXPECT_TRUE(PosesJson(without_run, f.loaded->skeleton(), std::nullopt)["summary"]["shadow_light"].is_null());
+}
+
+// One camera, masks that keep the walker's shadow, and a start 900 mm nearer along the
+// line of sight (as a start that read the shadow's far end as the feet): the estimate's
+// own body covers much of the shadow, so the light is looked for with the body moved
+// away along the line of sight as well (Tracker::LookForShadowLight). Oracles: the clip's
+// own light, found on the fewest looks there can be (the coarse grid's six and the fine
+// grid's six, a look every 2nd frame: frame 22; with the estimate's place alone, frame
+// 52), and the root's true place on the floor.
+TEST(Tracker, OneCamerasShadowIsFoundWithTheWalkerPlacedTooNear) {
+  const Fixture& f = Shared();
+  constexpr int kClipFrames = 60;
+  ClipOptions clip = SmallClip(kClipFrames);
+  clip.rig.num_cameras = 1;
+  clip.rig.width = 240, clip.rig.height = 180;
+  const ShadowClip shadowed(clip);
+  const ClipGroundTruth& truth = shadowed.truth;
+  const Eigen::Vector3d& light = shadowed.light;
+  TrackerOptions options;
+  options.annealing.particles = 150;
+  options.shadow.every = 2;
+  Tracker tracker(*f.loaded, truth.cameras, options);
+  InitialGuess guess = TruthGuess(truth, *f.loaded, tracker.state_model());
+  const Eigen::Vector3d eye = truth.cameras[0].CentreInWorld();
+  const Eigen::Vector2d toward = (Eigen::Vector2d(eye.x(), eye.z()) - guess.floor_mm).normalized();
+  guess.floor_mm += 900 * toward;
+  guess.floor_std_mm = 30;
+  tracker.StartAt(guess);
+  double end_mm = 0;  // the root's floor error over the last 15 frames
+  std::string line;
+  for (int k = 0; k < kClipFrames; ++k) {
+    const TrackedFrame out = tracker.Step(ClipFrameAt(truth, shadowed.clip(), k));
+    const Eigen::Vector3d d = out.joints_mm.col(0) - truth.frames[k].joints_mm.col(0);
+    if (k % 5 == 0) line += " " + std::to_string(static_cast<int>(std::hypot(d.x(), d.z())));
+    if (k >= kClipFrames - 15) end_mm += std::hypot(d.x(), d.z()) / 15;
+  }
+  const std::optional<Eigen::Vector3d>& found = tracker.shadow_light().light();
+  ASSERT_TRUE(found.has_value()) << "root off by (mm):" << line;
+  const double off_deg = std::acos(std::clamp(found->dot(light), -1.0, 1.0)) * 180 / std::numbers::pi;
+  std::printf("the light found at frame %d, %.1f degrees off; root off by (mm, every 5th frame):%s; %.0f over the "
+              "last 15\n", tracker.shadow_light_frame(), off_deg, line.c_str(), end_mm);
+  EXPECT_LT(off_deg, 6);
+  EXPECT_LE(tracker.shadow_light_frame(), 2 * 12);
+  EXPECT_LT(end_mm, 200);
 }
 
 // Two cameras whose blobs hold a shadow cast towards them, attached at the feet, and

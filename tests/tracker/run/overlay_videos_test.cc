@@ -1,7 +1,8 @@
 // The overlay videos written on their own thread against what was handed in: one video
 // frame per tracked frame in order, a dropped frame shown as the last image dimmed, the
 // body drawn where the camera that rendered it projects it, what AddAndDraw shows being
-// what is written, and an unwritable folder refused with the file named.
+// what is written, a found light's shadow outlined on the floor, and an unwritable folder
+// refused with the file named.
 #include "tracker/run/overlay_videos.h"
 
 #include <gtest/gtest.h>
@@ -84,6 +85,38 @@ TEST(OverlayVideos, WritesEveryFrameInOrderAndDimsADroppedOne) {
   EXPECT_GT(cv::countNonZero(difference.reshape(1) > 40), 20);  // lines over the plain grey
   cv::absdiff(frames[5], shown5[0], difference);
   EXPECT_LT(cv::mean(difference)[0], 4);  // what was shown is what was written (MJPG's loss)
+}
+
+// With the light of the walkers' shadows found, the body's shadow is outlined on the
+// floor: around where the camera projects the head's shadow (the head's top carried along
+// the light onto the floor, by hand), and nothing there without the light.
+TEST(OverlayVideos, AFoundLightsShadowIsOutlinedOnTheFloor) {
+  const Scene scene;
+  const test::TempDir temp;
+  TrackedFrame estimate = scene.Estimate(5);
+  const Eigen::Vector3d light = Eigen::Vector3d(1, 1, 0).normalized();  // 45 degrees up, from +x
+  const Eigen::Index top = [&] {
+    Eigen::Index j;
+    estimate.joints_mm.row(1).maxCoeff(&j);
+    return j;
+  }();
+  const Eigen::Vector3d head = estimate.joints_mm.col(top);
+  const Eigen::Vector3d on_floor = head - head.y() / light.y() * light;
+  Eigen::Vector2d pixel;
+  ASSERT_TRUE(scene.camera.Project(on_floor, &pixel));
+  const cv::Rect around(static_cast<int>(pixel.x()) - 6, static_cast<int>(pixel.y()) - 6, 13, 13);
+  ASSERT_TRUE((cv::Rect(0, 0, scene.camera.width, scene.camera.height) & around) == around);
+  const auto drawn = [&](const std::optional<Eigen::Vector3d>& found) {
+    estimate.shadow_light = found;
+    OverlayVideos videos(temp.path(), {scene.camera}, 25, scene.body, scene.skeleton);
+    const cv::Mat shown = videos.AddAndDraw(scene.MakeFrame(5), estimate).at(0);
+    videos.Close();
+    cv::Mat difference;
+    cv::absdiff(shown(around), cv::Scalar::all(140), difference);
+    return cv::countNonZero(difference.reshape(1) > 40);
+  };
+  EXPECT_EQ(drawn(std::nullopt), 0);
+  EXPECT_GT(drawn(light), 6);
 }
 
 TEST(OverlayVideos, AnUnwritableFolderIsNamed) {
