@@ -308,8 +308,10 @@ class TrackVideoTest(Fixture):
         yamls = [str(clip / f"{n}.yaml") for n in names]
         arguments = [a for v, c in zip(videos, yamls) for a in ("--video", v, "--camera", c)]
         run_jgpm("track", "--model", self.models["jgpm"], *arguments, "--seed", 4, "--no-overlay", "--out", out)
-        expected = json.loads((out / "poses.json").read_text())["frames"]
+        written = json.loads((out / "poses.json").read_text())
+        expected = written["frames"]
         result = jgpm.track_video(self.models["jgpm"], videos, yamls, seed=4, threads=1)
+        self.assertEqual(result["shadow_light"], written["summary"]["shadow_light"])
         self.assertEqual(len(result["frames"]), len(expected))
         for e, f in zip(result["frames"], expected):
             self.assertEqual((e["frame"], e["status"]), (f["frame"], f["status"]))

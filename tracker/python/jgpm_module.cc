@@ -479,8 +479,14 @@ py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& video
   for (const PeopleFrame& f : result.people) frames.append(PeopleDict(f));  // people='all
   py::list written;
   for (const fs::path& p : result.written) written.append(p.string());
+  py::object light = py::none();  // poses.json's summary's shadow_light
+  if (result.shadow_light_deg)
+    light = py::dict(py::arg("azimuth_deg") = result.shadow_light_deg->x(),
+                     py::arg("elevation_deg") = result.shadow_light_deg->y(),
+                     py::arg("found_at_frame") = result.shadow_light_frame);
   return py::dict(py::arg("frames") = frames, py::arg("tracking_seconds") = result.run.tracking_seconds,
-                  py::arg("wall_seconds") = result.wall_seconds, py::arg("written") = written);
+                  py::arg("wall_seconds") = result.wall_seconds, py::arg("written") = written,
+                  py::arg("shadow_light") = light);
 }
 
 }  // namespace

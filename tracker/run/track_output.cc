@@ -289,7 +289,6 @@ cv::Mat Canvas(const cv::Mat& image, const Camera& camera) {
   return image.empty() ? cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(60, 60, 60)) : image.clone();
 }
 
-// The outline of the capsules' silhouette in `colour`.
 // The estimate's outline; with the light of the walkers' shadows found, its shadow's
 // outline on the floor too, in the colour at half strength (what the likelihood draws with
 // the body: tracker/filter/shadow_light.h).
