@@ -3,39 +3,40 @@
 // brightness) keeps the shadow as foreground attached to the feet; a body that does not
 // cast it explains that foreground with whatever it can move there: on the harsh clips,
 // hidden legs reached into it and pulled a one-camera walker 0.6-0.7 m nearer (564 mm).
-// With the light known the likelihood draws each particle's own shadow (likelihood.h),
-// and the shadow is evidence for the right place instead of against it.
+// With the light known the likelihood draws each particle's own shadow (likelihood.h), and
+// the shadow is evidence for the right place instead of against it.
 //
 // The light is found by the likelihood itself: every `every` frames tracked well, the
-// estimate is scored with its shadow cast from each light of a grid (azimuth every
-// 15 degrees, elevation 20-80 degrees every 10) and with none (with one camera, at a few
+// estimate is scored with its shadow cast from each light of a grid (azimuth every 15
+// degrees, elevation 20-80 degrees every 10) and with none (with one camera, at a few
 // places along its line of sight too: Tracker::LookForShadowLight); each light's gain is
 // the cost without a shadow less the cost with it, summed over the cameras. Once the last
-// `looks` looks' mean gain of the best light is over `min_gain`, a finer grid about it
-// (3 degrees, +-12 in azimuth and +-9 in elevation) is looked at as many times, every
-// `fine_every` frames, and its best is taken for the rest of the run (a scene's light
-// does not move in a clip's minutes; a restart keeps it). fine_every is 1: the finer grid
-// is entered only for a light that already explains the masks, and its 63 lights cost
-// under half the coarse grid's 168; on consecutive frames the light is drawn 24 frames
-// sooner (tracker_test: frame 16 for 22, multi_tracker_test: 34 for 58), a little less
+// `looks` looks' mean gain of the best light is over `min_gain`, a finer grid about it (3
+// degrees, +-12 in azimuth and +-9 in elevation) is looked at as many times, every
+// `fine_every` frames, and its best is taken for the rest of the run (a scene's light does
+// not move in a clip's minutes; a restart keeps it). fine_every is 1: the finer grid is
+// entered only for a light that already explains the masks, and its 63 lights cost under
+// half the coarse grid's 168; on consecutive frames the light is drawn 24 frames sooner
+// (07_04-slow-2cam-shadow: frame 31 for 55; multi_tracker_test: 34 for 58), a little less
 // exactly (3-4 degrees off for 0.3-2.7: consecutive looks see nearly the same estimate),
-// and the harsh clips went 221.0 -> 214.8 mm, the crowd suite's pose 70.1 -> 67.5. The last looks, not all since the grid was set: a shadow
-// out of sight at first (behind a table with the feet, under a camera's lower edge) is
-// not outweighed by the looks that could not see it. A light that explains nothing draws shadows
-// where the masks have none, which costs: without a shadow the gains are mostly below 0.
-// min_gain's rule: about twice the largest mean gain a clip without a shadow gave (the suites'
-// clips, seed 1, over any six looks in a row: at most 0.021, the skirted monocular walk;
-// a coat -0.06, bare walks -0.3 to -0.5), under what shadows in view gave (0.14-0.46 with
-// two cameras or more). One clip without a shadow goes over it: a glossy floor whose
-// reflection's remnants below the feet a light 20 degrees up behind the walker explains
-// (07_03-2cam-glossy, 0.15 by its 20th look; the clip ends before the finer grid's
-// looks): on a longer walk over such a floor that light is taken. A webcam near the walk
-// sees little of its walker's shadow within the region where the person is expected
-// (0.006-0.07), and is mostly not found. The estimate must be roughly right for its shadow
-// to tell: a walker already pulled into the shadow explains it with their own body (the
-// harsh one-camera clip, 0.7 m off from the start: no light gained over 0.03 at the
-// estimate's place; with the places behind it, the best light's six looks in a row gained
-// up to 0.04-0.05, and the light was found in 2 seeds of 4).
+// and the harsh clips went 221.0 -> 214.8 mm, the crowd suite's pose 70.1 -> 67.5. The
+// last looks, not all since the grid was set: a shadow out of sight at first (behind a
+// table with the feet, under a camera's lower edge) is not outweighed by the looks that
+// could not see it. A light that explains nothing draws shadows where the masks have none,
+// which costs: without a shadow the gains are mostly below 0. min_gain's rule: about twice
+// the largest mean gain a clip without a shadow gave (the suites' clips, seed 1, over any
+// six looks in a row: at most 0.021, the skirted monocular walk; a coat -0.06, bare walks
+// -0.3 to -0.5), under what shadows in view gave (0.14-0.46 with two cameras or more). One
+// clip without a shadow goes over it: a glossy floor whose reflection's remnants below the
+// feet a light 20 degrees up behind the walker explains (07_03-2cam-glossy, 0.15 by its
+// 20th look; the clip ends before the finer grid's looks): on a longer walk over such a
+// floor that light is taken. A webcam near the walk sees little of its walker's shadow
+// within the region where the person is expected (0.006-0.07), and is mostly not found.
+// The estimate must be roughly right for its shadow to tell: a walker already pulled into
+// the shadow explains it with their own body (the harsh one-camera clip, 0.7 m off from
+// the start: no light gained over 0.03 at the estimate's place; with the places behind it,
+// the best light's six looks in a row gained up to 0.04-0.05, and the light was found in 2
+// seeds of 4).
 #pragma once
 
 #include <deque>
