@@ -9,7 +9,7 @@ namespace jgpm {
 
 bool ShadowLightOptions::Check(std::string* why) const {
   std::string problem;
-  if (every < 1 || fine_every < 1) problem = "every and fine_every must be >= 1";
+  if (every < 1) problem = "every must be >= 1";
   else if (looks < 1) problem = "looks must be >= 1";
   else if (!(min_gain >= 0)) problem = "min_gain must be >= 0";
   else if (idle_after < 1 || idle_every < 1) problem = "idle_after and idle_every must be >= 1";
@@ -54,8 +54,7 @@ void ShadowLight::Grid(double azimuth0, double azimuth_step, int azimuths, doubl
 
 bool ShadowLight::Due() {
   if (!options_.enabled || light_) return false;
-  const int every = fine_ ? options_.fine_every
-                          : total_looks_ >= options_.idle_after ? options_.idle_every : options_.every;
+  const int every = total_looks_ >= options_.idle_after && !fine_ ? options_.idle_every : options_.every;
   return frames_++ % every == 0;
 }
 

@@ -76,7 +76,7 @@ bool TrackerOptions::Check(std::string* why) const {
   else if (mirror_frames < 0) problem = "mirror_frames must be >= 0";
   else if (legs_trial_frames < 0) problem = "legs_trial_frames must be >= 0 (0: never)";
   else if (!(legs_trial_margin >= 0)) problem = "legs_trial_margin must be >= 0";
-  else if (!shadow.Check(nullptr)) problem = "shadow: every, fine_every, looks, idle_after and idle_every must be >= 1, min_gain >= 0";
+  else if (!shadow.Check(nullptr)) problem = "shadow: every, looks, idle_after and idle_every must be >= 1, min_gain >= 0";
   else if (turn_every < 0) problem = "turn_every must be >= 0 (0: never)";
   else if (reverse_every < 0) problem = "reverse_every must be >= 0 (0: never)";
   else if (relocate_every < 0 || relocate_share < 1 || !(relocate_distance_mm >= 0) || !(relocate_merged >= 1))

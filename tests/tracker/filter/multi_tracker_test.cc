@@ -280,7 +280,7 @@ TEST(MultiTracker, AShadowAndClutterStartNobody) {
 }
 
 // Two walkers apart whose masks keep their shadows: the light is found (by whoever's
-// tracker finds it first; here at frame 34 of 79, 1.2 degrees off) and is the clip's own;
+// tracker finds it first; here at frame 58 of 79, 2.7 degrees off) and is the clip's own;
 // the walkers are tracked as well as without it (MOTA 0.861 either way: their births).
 TEST(MultiTracker, TheWalkersShadowsLightIsFoundAndShared) {
   test::TempDir dir;

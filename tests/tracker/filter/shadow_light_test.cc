@@ -180,25 +180,5 @@ TEST(ShadowLight, LooksEveryFewFramesThenRarelyWhenNothingIsFound) {
   EXPECT_FALSE(finder.light().has_value());
 }
 
-// A light that explains the masks: the coarse grid's looks every `every` frames, then the
-// finer grid's on consecutive frames (fine_every 1), then none once it is found.
-TEST(ShadowLight, TheFinerGridIsLookedAtOnConsecutiveFrames) {
-  const Eigen::Vector3d light = ShadowLight::Direction(100, 40);
-  ShadowLight finder;  // every 5, looks 6, fine_every 1
-  std::vector<int> due;
-  for (int frame = 0; frame < 60; ++frame)
-    if (finder.Due()) {
-      due.push_back(frame);
-      finder.Look([&](const std::vector<std::optional<Eigen::Vector3d>>& lights) {
-        std::vector<double> costs{1.0};
-        for (size_t i = 1; i < lights.size(); ++i) costs.push_back(1.0 - 0.2 * std::max(0.0, lights[i]->dot(light)));
-        return costs;
-      });
-    }
-  EXPECT_EQ(due, (std::vector<int>{0, 5, 10, 15, 20, 25, 26, 27, 28, 29, 30, 31}));
-  ASSERT_TRUE(finder.light().has_value());
-  EXPECT_LT(DegreesBetween(*finder.light(), light), 2.2);
-}
-
 }  // namespace
 }  // namespace jgpm
