@@ -14,27 +14,27 @@
 // `looks` looks' mean gain of the best light is over `min_gain`, a finer grid about it (3
 // degrees, +-12 in azimuth and +-9 in elevation) is looked at as many times, and its best
 // is taken for the rest of the run (a scene's light does not move in a clip's minutes; a
-// restart keeps it). Looking at the finer grid on consecutive frames instead found lights
-// 24 frames sooner (harsh clips 221.0 -> 214.8 mm) but took a light on vtest.avi, where
-// none was taken before, and its tracks got worse (HOG match 0.963 -> 0.907, 25 -> 36
-// ids): consecutive looks see nearly the same estimate and are not six pieces of evidence.
-// The last looks, not all since the grid was set: a shadow out of sight at first (behind a
-// table with the feet, under a camera's lower edge) is not outweighed by the looks that
-// could not see it. A light that explains nothing draws shadows where the masks have none,
-// which costs: without a shadow the gains are mostly below 0. min_gain's rule: about twice
-// the largest mean gain a clip without a shadow gave (the suites' clips, seed 1, over any
-// six looks in a row: at most 0.021, the skirted monocular walk; a coat -0.06, bare walks
-// -0.3 to -0.5), under what shadows in view gave (0.14-0.46 with two cameras or more). One
-// clip without a shadow goes over it: a glossy floor whose reflection's remnants below the
-// feet a light 20 degrees up behind the walker explains (07_03-2cam-glossy, 0.15 by its
-// 20th look; the clip ends before the finer grid's looks): on a longer walk over such a
-// floor that light is taken. A webcam near the walk sees little of its walker's shadow
-// within the region where the person is expected (0.006-0.07), and is mostly not found.
-// The estimate must be roughly right for its shadow to tell: a walker already pulled into
-// the shadow explains it with their own body (the harsh one-camera clip, 0.7 m off from
-// the start: no light gained over 0.03 at the estimate's place; with the places behind it,
-// the best light's six looks in a row gained up to 0.04-0.05, and the light was found in 2
-// seeds of 4).
+// restart keeps it). The last looks, not all since the grid was set: a shadow out of sight
+// at first (behind a table with the feet, under a camera's lower edge) is not outweighed
+// by the looks that could not see it. A light that explains nothing draws shadows where
+// the masks have none, which costs: without a shadow the gains are mostly below 0.
+// min_gain's rule: about twice the largest mean gain a clip without a shadow gave (the
+// suites' clips, seed 1, over any six looks in a row: at most 0.021, the skirted monocular
+// walk; a coat -0.06, bare walks -0.3 to -0.5), under what shadows in view gave (0.14-0.46
+// with two cameras or more). One clip without a shadow goes over it: a glossy floor whose
+// reflection's remnants below the feet a light 20 degrees up behind the walker explains
+// (07_03-2cam-glossy, 0.15 by its 20th look; the clip ends before the finer grid's looks):
+// on a longer walk over such a floor that light is taken. A webcam near the walk sees
+// little of its walker's shadow within the region where the person is expected
+// (0.006-0.07), and is mostly not found. The estimate must be roughly right for its shadow
+// to tell: a walker already pulled into the shadow explains it with their own body (the
+// harsh one-camera clip, 0.7 m off from the start: no light gained over 0.03 at the
+// estimate's place; with the places behind it, the best light's six looks in a row gained
+// up to 0.04-0.05, and the light was found in 2 seeds of 4). Tried and not kept: looking
+// at the finer grid on consecutive frames instead found lights 24 frames sooner (harsh
+// clips 221.0 -> 214.8 mm) but took a light on vtest.avi, where none was taken before, and
+// its tracks got worse (HOG match 0.963 -> 0.907, 25 -> 36 ids): consecutive looks see
+// nearly the same estimate and are not six pieces of evidence.
 #pragma once
 
 #include <deque>
