@@ -63,6 +63,7 @@ bool TrackerOptions::Check(std::string* why) const {
   const char* problem = nullptr;
   if (threads < 1 || threads > 256) problem = "threads must be in [1, 256]";
   else if (start_frames < 1 || start_frames > 1000) problem = "start_frames must be in [1, 1000]";
+  else if (start_seen_frames < 1 || start_seen_frames > start_frames) problem = "start_seen_frames must be in [1, start_frames]";
   else if (start_particle_factor < 1 || start_particle_factor > 100) problem = "start_particle_factor must be in [1, 100]";
   else if (start_layers < 1 || start_layers > 100) problem = "start_layers must be in [1, 100]";
   else if (!(start_backwards_s >= 0)) problem = "start_backwards_s must be >= 0 (0: never)";
@@ -179,7 +180,10 @@ Tracker::~Tracker() = default;
 void Tracker::LookFor(const Frame& frame) {
   unstarted_.push_back(Locate(frame));
   if (unstarted_.size() > static_cast<size_t>(std::max(1, options_.start_frames))) unstarted_.erase(unstarted_.begin());
-  if (!frame.dropped) StartFrom(std::vector<Sightings>(unstarted_), /*at_last=*/true);  // a copy: a start clears them
+  // From nobody, not before there are enough frames to follow someone through.
+  const bool wait = next_choice_.kind == PersonPreference::Kind::kStrongest &&
+                    unstarted_.size() < static_cast<size_t>(options_.start_seen_frames);
+  if (!frame.dropped && !wait) StartFrom(std::vector<Sightings>(unstarted_), /*at_last=*/true);  // a copy: a start clears them
 }
 
 Tracker::Sightings Tracker::Locate(const Frame& frame) const {
@@ -269,13 +273,16 @@ bool Tracker::Guess(const std::vector<Sightings>& seen, InitialGuess* guess, con
     std::copy_if(seen[first].people.begin(), seen[first].people.end(), std::back_inserter(wholes), whole);
     if (wholes.empty()) continue;
     if (prefer.kind == PersonPreference::Kind::kStrongest) {
+      // Someone seen in too few frames is a flicker (TrackerOptions::start_seen_frames):
+      // the next frame with someone wholly in view may hold a person.
       int most = -1;
       for (const PersonSighting& candidate : wholes) {
         std::vector<PersonSighting> chain = follow(first, candidate);
-        const int seen = static_cast<int>(std::count_if(chain.begin(), chain.end(), [](const PersonSighting& s) { return s.found; }));
-        if (seen > most) most = seen, sightings = std::move(chain);
+        const int found = static_cast<int>(std::count_if(chain.begin(), chain.end(), [](const PersonSighting& s) { return s.found; }));
+        if (found > most) most = found, sightings = std::move(chain);
       }
-      break;
+      if (most >= std::min<int>(options_.start_seen_frames, static_cast<int>(seen.size()))) break;
+      continue;
     }
     const PersonSighting chosen = ChoosePerson(wholes, prefer);
     if (chosen.found) {
@@ -377,6 +384,7 @@ void Tracker::StartAt(const InitialGuess& guess, int frame) {
   filter_->Initialise(guess, options_.annealing.particles * options_.start_particle_factor, frame);
   started_ = true;
   fresh_ = true;
+  unconfirmed_ = false;
   unstarted_.clear();
   // A start that knows the pose (--init truth) knows which leg is forward.
   frames_since_start_ = guess.coordinates.size() > 0 ? options_.mirror_frames : 0;
@@ -408,6 +416,7 @@ bool Tracker::StartFrom(const std::vector<Sightings>& seen, bool at_last) {
     prefer.within_mm = std::min(prefer.within_mm, 1000 + 2000 * (seen.back().time_s - last_good_time_s_));
   if (!Guess(seen, &guess, prefer, &boxes, at_last)) return false;
   StartAt(guess, at_last ? seen.back().index : seen.front().index);
+  unconfirmed_ = prefer.kind == PersonPreference::Kind::kStrongest;
   start_boxes_ = boxes;  // where to look at the start: the person's blobs then
   // Where something may hide the feet (others, painted occluders): a head alone is no size.
   const bool may_hide = seen.back().may_hide;
@@ -725,6 +734,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     ++bad_frames_;
   } else {
     bad_frames_ = 0;
+    unconfirmed_ = false;
     last_good_time_s_ = frame.time_s;
   }
   const bool nobody = bad_frames_ > 0 && !seen.found;
@@ -766,8 +776,9 @@ TrackedFrame Tracker::Step(const Frame& frame) {
     started_ = false;
     if (seen.found) LookFor(frame);
   } else {
-    // Out of every view and seen by none: the estimate is the prediction.
-    out.status = evidence ? TrackStatus::kTracked : TrackStatus::kPredicted;
+    // Out of every view and seen by none, or never yet explained well since a start from
+    // nobody: the estimate is the prediction.
+    out.status = evidence && !unconfirmed_ ? TrackStatus::kTracked : TrackStatus::kPredicted;
   }
   // Going against its dynamics: the walk's direction turned (TrackerOptions::travel).
   if (legs_by_phase_ && out.status == TrackStatus::kTracked && bad_frames_ == 0) {

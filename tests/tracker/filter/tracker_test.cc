@@ -972,6 +972,67 @@ TEST(Tracker, GuessReadsThePlaceHeadingAndSpeedOfTheWalk) {
   EXPECT_LT(guess.heading_std_rad, std::numbers::pi);  // a heading was read, not "any"
 }
 
+// Nobody is started on a flicker: a walker's blob seen in one frame of three, by turns at
+// the left and the right of one camera's view (leaves in a tree, a segmentation's
+// noise), is followed in at most 3 of any 15 frames, fewer than
+// TrackerOptions::start_seen_frames. The walker then in view every frame is started once
+// seen in that many. Before the rule the first flicker was started on at once and
+// "tracked".
+TEST(Tracker, NobodyIsStartedOnAPersonShapedFlicker) {
+  const Fixture& f = Shared();
+  const Camera& camera = f.truth.cameras[0];
+  TrackerOptions options;
+  options.annealing.particles = 100;
+  Tracker tracker(*f.loaded, {camera}, options);
+  constexpr int kFlicker = 15;
+  std::string line;
+  for (int k = 0; k < kFrames; ++k) {
+    Frame frame = ClipFrameAt(f.truth, f.clip, k);
+    frame.masks.resize(1);
+    cv::Mat& mask = frame.masks[0];
+    if (k < kFlicker) {
+      // The walker's blob moved to a quarter of the width from the left or the right edge.
+      const cv::Rect box = cv::boundingRect(mask);
+      const int centre = (k / 3) % 2 == 0 ? camera.width / 4 : 3 * camera.width / 4;
+      const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, centre - (box.x + box.width / 2), 0, 1, 0);
+      cv::Mat moved;
+      cv::warpAffine(mask, moved, shift, mask.size(), cv::INTER_NEAREST);
+      mask = k % 3 == 0 ? moved : cv::Mat::zeros(mask.size(), mask.type());
+    }
+    line += TrackStatusName(tracker.Step(frame).status)[0];
+  }
+  std::printf("statuses %s (the walker from frame %d)\n", line.c_str(), kFlicker);
+  EXPECT_EQ(line.substr(0, kFlicker), std::string(kFlicker, 'l'));
+  // Started once followed in start_seen_frames frames, and explained from then on.
+  const size_t first = line.find('t', kFlicker);
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_LE(first, static_cast<size_t>(kFlicker + options.start_seen_frames + 1));
+  EXPECT_EQ(line.substr(line.size() - 3), "ttt");
+}
+
+// A start from nobody whose estimates never explain the masks to lost_iou is never
+// reported tracked: its frames are predicted until one does. Here lost_iou is set above
+// any IoU the walker's estimates reach, so none does; they were "tracked" until the loss
+// rule ran out (lost_frames), and again after each restart.
+TEST(Tracker, AStartNeverExplainedWellIsNotReportedTracked) {
+  const Fixture& f = Shared();
+  TrackerOptions options;
+  options.annealing.particles = 100;
+  options.lost_iou = 0.97;
+  Tracker tracker(*f.loaded, f.truth.cameras, options);
+  std::string line;
+  double best_iou = 0;
+  for (int k = 0; k < kFrames; ++k) {
+    const TrackedFrame out = tracker.Step(ClipFrameAt(f.truth, f.clip, k));
+    line += TrackStatusName(out.status)[0];
+    if (out.state.size()) best_iou = std::max(best_iou, out.MeanIou());
+  }
+  std::printf("statuses %s (the best IoU %.2f)\n", line.c_str(), best_iou);
+  ASSERT_LT(best_iou, options.lost_iou);
+  ASSERT_NE(line.find('p'), std::string::npos) << "a start must be made";
+  EXPECT_EQ(line.find('t'), std::string::npos);
+}
+
 // A start from frames already past (a person born while others are tracked) is where the
 // walker is at the last of them, not where they were at the first: half a second on, the
 // walker of the clip has gone over half a metre.
