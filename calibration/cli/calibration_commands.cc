@@ -189,10 +189,7 @@ std::vector<Camera> CalibrateFromWalkerVideos(const WalkerRequest& request, cons
       const std::string& video = take[k];
       const WalkerEvidence one = read_walkers({video, per_camera(request.backgrounds, k), request.max_frames,
                                                request.fps, request.width, request.height});
-      // A fixed camera's foreground is its people: a few percent of the image (a walker a
-      // metre from a webcam, 10%). Most of it, most of the time, is a camera that moves.
-      constexpr double kMovingShare = 0.25;
-      if (one.foreground_share > kMovingShare) {
+      if (one.foreground_share > kMovingCameraShare) {
         ThrowInputError("--walkers " + video, "half its frames are more than " +
                                                   std::to_string(std::lround(100 * one.foreground_share)) +
                                                   "% foreground: a moving camera (or changing light)? calibration "

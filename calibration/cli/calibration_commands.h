@@ -24,6 +24,13 @@ struct WalkerVideo {
   double fps = 0;          // a folder of frames' rate, or the rate to ask a live camera for
   int width = 0, height = 0;  // the size to ask a live camera for (0: its default)
 };
+// A fixed camera's foreground is its people: a few percent of the image (a walker a metre
+// from a webcam, 10%; the suites' clips 15% at most in any frame). Most of it, most of the
+// time (the median over frames above this share), is a camera that moves, cuts between
+// shots or changing light (a film's scene, Debian's opencv-doc `Megamind.avi`: 54%).
+// `calibrate --walkers` refuses such a video; `track` says so.
+constexpr double kMovingCameraShare = 0.25;
+
 struct WalkerEvidence {
   int width = 0, height = 0;  // the video's frame size
   int frames = 0;

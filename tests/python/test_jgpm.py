@@ -312,6 +312,8 @@ class TrackVideoTest(Fixture):
         expected = written["frames"]
         result = jgpm.track_video(self.models["jgpm"], videos, yamls, seed=4, threads=1)
         self.assertEqual(result["shadow_light"], written["summary"]["shadow_light"])
+        self.assertEqual(result["foreground_share"], written["summary"]["foreground_share"])
+        self.assertEqual(sorted(result["foreground_share"]), names)
         self.assertEqual(len(result["frames"]), len(expected))
         for e, f in zip(result["frames"], expected):
             self.assertEqual((e["frame"], e["status"]), (f["frame"], f["status"]))

@@ -18,6 +18,7 @@
 #include "io/cli/device_commands.h"
 #include "io/cli/process_clock.h"
 #include "io/cli/progress.h"
+#include "calibration/cli/calibration_commands.h"
 #include "io/gait/data_root.h"
 #include "tracker/cli/walker_video.h"
 #include "tracker/clip/tracking_suite.h"
@@ -209,6 +210,13 @@ void RunTrack(TrackArguments a) {
                 n, tracked, predicted, lost, run.source.c_str(), run.model_path.c_str(), run.state_space.c_str(),
                 run.options.annealing.particles, run.options.annealing.layers, run.init.c_str(),
                 run.tracking_seconds > 0 ? n / run.tracking_seconds : 0.0);
+  }
+  for (size_t c = 0; c < run.foreground_share.size(); ++c) {
+    if (run.foreground_share[c] <= kMovingCameraShare) continue;
+    std::printf("warning: %s's masks are %.0f%% foreground in half its frames or more, where a fixed camera's are its "
+                "people, a few percent: a moving camera, cuts between shots or changing light? jgpm tracks people "
+                "from fixed cameras; these poses are not to be trusted\n",
+                run.cameras[c].name.c_str(), 100 * run.foreground_share[c]);
   }
   std::string working;
   for (size_t c = 0; c < run.cameras.size() && c < result.working_cameras.size(); ++c) {

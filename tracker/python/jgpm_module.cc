@@ -484,9 +484,12 @@ py::dict TrackVideo(const fs::path& model, const std::vector<std::string>& video
     light = py::dict(py::arg("azimuth_deg") = result.shadow_light_deg->x(),
                      py::arg("elevation_deg") = result.shadow_light_deg->y(),
                      py::arg("found_at_frame") = result.shadow_light_frame);
+  py::dict shares;  // poses.json's summary's foreground_share
+  for (size_t c = 0; c < result.run.foreground_share.size(); ++c)
+    shares[py::str(result.run.cameras[c].name)] = result.run.foreground_share[c];
   return py::dict(py::arg("frames") = frames, py::arg("tracking_seconds") = result.run.tracking_seconds,
                   py::arg("wall_seconds") = result.wall_seconds, py::arg("written") = written,
-                  py::arg("shadow_light") = light);
+                  py::arg("shadow_light") = light, py::arg("foreground_share") = shares);
 }
 
 }  // namespace

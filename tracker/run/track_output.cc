@@ -166,6 +166,15 @@ json ShadowLightJson(const std::vector<const TrackedFrame*>& frames) {
   return nullptr;
 }
 
+// Each camera's median share of foreground (TrackRun::foreground_share), by its name; null
+// when not measured.
+json ForegroundShareJson(const TrackRun& run) {
+  if (run.foreground_share.size() != run.cameras.size()) return nullptr;
+  json shares = json::object();
+  for (size_t c = 0; c < run.cameras.size(); ++c) shares[run.cameras[c].name] = run.foreground_share[c];
+  return shares;
+}
+
 }  // namespace
 
 json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optional<RunErrors>& errors) {
@@ -194,6 +203,7 @@ json PosesJson(const TrackRun& run, const Skeleton& skeleton, const std::optiona
   std::vector<const TrackedFrame*> all;
   for (const TrackedFrame& f : run.frames) all.push_back(&f);
   out["summary"]["shadow_light"] = ShadowLightJson(all);
+  out["summary"]["foreground_share"] = ForegroundShareJson(run);
   if (errors) out["errors"] = {{"gait17", ErrorsJson(errors->gait17)}, {"bodytrack14", ErrorsJson(errors->bodytrack14)}};
   return out;
 }
@@ -226,7 +236,8 @@ json PeoplePosesJson(const TrackRun& run, const Skeleton& skeleton, const std::v
     for (const PersonFrame& p : f.people) all.push_back(&p.frame);
   out["summary"] = {{"frames", n}, {"people", tracks},
                     {"evaluations_per_frame", n ? static_cast<double>(evaluations) / n : 0.0},
-                    {"shadow_light", ShadowLightJson(all)}};
+                    {"shadow_light", ShadowLightJson(all)},
+                    {"foreground_share", ForegroundShareJson(run)}};
   if (mot) {
     out["clear_mot"] = {{"mota", mot->mota}, {"motp_mm", mot->motp_mm}, {"true_person_frames", mot->truth},
                         {"pairs", mot->pairs}, {"misses", mot->misses}, {"false_positives", mot->false_positives},

@@ -44,6 +44,9 @@ struct TrackRun {
   TrackerOptions options;
   std::vector<TrackedFrame> frames;
   double tracking_seconds = 0;           // filtering only (no decoding, no writing)
+  // Per camera, the median over its frames of the share of its masks that is foreground
+  // (empty: not measured). A fixed camera's is its people, a few percent.
+  std::vector<double> foreground_share;
 };
 
 // The errors of a run against per-frame true bone ends (empty matrices: no truth), on the

@@ -508,6 +508,53 @@ TEST(TrackCli, VideosAndImageFoldersAreTrackedThroughBackgroundSubtraction) {
   EXPECT_TRUE(written.CentreInWorld().isApprox(expected.CentreInWorld(), 1e-9));
 }
 
+// Each camera's share of foreground (the median over its frames) is in poses.json's
+// summary, as the masks tracked give it; over a quarter, as a moving camera and changing
+// light give it (the clip's 160 px wide video panned 80 px across its frames, every other frame 40%
+// darker, the background learnt from it), the run says so, naming the camera.
+TEST(TrackCli, AMovingCameraIsSaidToBeOne) {
+  const fs::path& clip = Shared().clip;
+  test::TempDir dir;
+  const fs::path pan = dir.path() / "pan.avi";
+  {
+    cv::VideoCapture walk((clip / "cam0.avi").string());
+    std::vector<cv::Mat> shots;
+    cv::Mat image;
+    while (walk.read(image)) shots.push_back(image.clone());
+    ASSERT_FALSE(shots.empty());
+    cv::VideoWriter panned(pan.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 30,
+                           cv::Size(shots[0].cols - 80, shots[0].rows));
+    for (size_t k = 0; k < shots.size(); ++k) {
+      const int x = static_cast<int>(80 * k / shots.size());
+      cv::Mat shot = shots[k](cv::Rect(x, 0, shots[k].cols - 80, shots[k].rows)) * (k % 2 ? 0.6 : 1.0);
+      panned.write(shot);
+    }
+  }
+  struct Case {
+    std::string video;
+    bool moving;
+  };
+  for (const Case& c : {Case{(clip / "cam0.avi").string(), false}, Case{pan.string(), true}}) {
+    const fs::path out = dir.path() / (c.moving ? "pan" : "fixed");
+    const Result r = TrackVideos(out, "--video " + c.video + " --camera-guess --save-masks");
+    ASSERT_EQ(r.status, 0) << r.err;
+    // The oracle: the median share of the masks written.
+    std::vector<double> shares;
+    for (const auto& file : fs::directory_iterator(out / "masks/cam0")) {
+      const cv::Mat mask = cv::imread(file.path().string(), cv::IMREAD_GRAYSCALE);
+      shares.push_back(static_cast<double>(cv::countNonZero(mask)) / mask.total());
+    }
+    ASSERT_FALSE(shares.empty());
+    std::nth_element(shares.begin(), shares.begin() + shares.size() / 2, shares.end());
+    const nlohmann::json poses = ReadJsonFile(out / "poses.json", "poses");
+    const double share = poses["summary"]["foreground_share"]["cam0"].get<double>();
+    std::printf("%s: %.3f of the image foreground\n", c.moving ? "panned" : "fixed", share);
+    EXPECT_NEAR(share, shares[shares.size() / 2], 1e-12);
+    EXPECT_EQ(share > 0.25, c.moving);
+    EXPECT_EQ(r.out.find("warning: cam0's masks are") != std::string::npos, c.moving) << r.out;
+  }
+}
+
 TEST(TrackCli, BadVideosAndFoldersGiveOneLineAndWriteNothing) {
   const fs::path& clip = Shared().clip;
   test::TempDir dir;
