@@ -277,7 +277,28 @@ void RemoveSpecks(cv::Mat* mask, double min_area) {
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(*mask, labels, stats, centroids, 8, CV_32S);
   std::vector<uint8_t> keep(n, 0);
-  for (int k = 1; k < n; ++k) keep[k] = stats.at<int>(k, cv::CC_STAT_AREA) >= min_area * mask->total() ? 255 : 0;
+  const auto box = [&stats](int k) {
+    return cv::Rect(stats.at<int>(k, cv::CC_STAT_LEFT), stats.at<int>(k, cv::CC_STAT_TOP),
+                    stats.at<int>(k, cv::CC_STAT_WIDTH), stats.at<int>(k, cv::CC_STAT_HEIGHT));
+  };
+  std::vector<int> large;
+  for (int k = 1; k < n; ++k)
+    if (stats.at<int>(k, cv::CC_STAT_AREA) >= min_area * mask->total()) keep[k] = 255, large.push_back(k);
+  // A small piece under a larger blob (kFootGap) is part of it: a foot under a table's edge.
+  for (int k = 1; k < n; ++k) {
+    if (keep[k]) continue;
+    const cv::Rect piece = box(k);
+    for (const int l : large) {
+      const cv::Rect big = box(l);
+      const int gap = static_cast<int>(kFootGap * big.height);
+      const int below = piece.y - (big.y + big.height);
+      const int overlap = std::min(piece.x + piece.width, big.x + big.width) - std::max(piece.x, big.x);
+      if (below >= 0 && below <= gap && 2 * overlap >= piece.width) {
+        keep[k] = 255;
+        break;
+      }
+    }
+  }
   for (int v = 0; v < mask->rows; ++v) {
     const int* l = labels.ptr<int>(v);
     uint8_t* m = mask->ptr<uint8_t>(v);

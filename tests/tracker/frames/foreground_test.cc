@@ -197,6 +197,24 @@ TEST(Foreground, RemoveSpecksKeepsEveryBlobButSpecks) {
   EXPECT_EQ(mask.at<uint8_t>(22, 22), 0);
 }
 
+// A piece too small to be anything alone is kept when it lies under a blob, within its
+// columns and a little below it: a foot seen under a table's edge. The same piece farther
+// down, or beside the blob, is a speck.
+TEST(Foreground, RemoveSpecksKeepsAFootUnderABlob) {
+  cv::Mat mask = cv::Mat::zeros(240, 320, CV_8UC1);
+  cv::rectangle(mask, cv::Rect(100, 40, 40, 100), 255, cv::FILLED);  // the body above a table, to row 139
+  const cv::Rect foot(110, 160, 10, 3), far(110, 185, 10, 3), beside(150, 160, 10, 3), across(138, 160, 10, 3);
+  for (const cv::Rect& r : {foot, far, beside, across}) cv::rectangle(mask, r, 255, cv::FILLED);
+  RemoveSpecks(&mask, ForegroundOptions{}.min_area);
+  // The foot 20 px under a 100 px blob; the far one 45 px (more than kFootGap of it); the
+  // one beside it out of its columns; the one across its edge with 2 of its 10 columns in.
+  EXPECT_EQ(cv::countNonZero(mask(foot)), 30);
+  EXPECT_EQ(cv::countNonZero(mask(far)), 0);
+  EXPECT_EQ(cv::countNonZero(mask(beside)), 0);
+  EXPECT_EQ(cv::countNonZero(mask(across)), 0);
+  EXPECT_EQ(cv::countNonZero(mask), 40 * 100 + 30);
+}
+
 TEST(Foreground, LearnTakesThePerPixelMedian) {
   std::vector<cv::Mat> images;
   for (int k = 0; k < 5; ++k) images.emplace_back(4, 4, CV_8UC3, cv::Scalar(10 * k, 100, 200 - k));
