@@ -128,14 +128,15 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
 int MovingPersonHeight(const std::vector<cv::Mat>& moving);
 
 // Removes the connected components smaller than `min_area` of the image from a binary
-// mask (255 = foreground), in place, but for those under a larger one: at most kFootGap of
-// its height below it, with at least half of their columns within its columns. A foot
+// mask (255 = foreground), in place, but for those under a larger one: at most kFootGap
+// of its height below it, with at least half of their columns within its columns. A foot
 // seen under a table's edge is a piece of 20-30 px at 320x240, and without it a camera
 // alone places the walker by the head (the locator) and the body slides along the line
-// of sight (35_28-tune-trousers-occl from its video, 4 seeds: 132.4 -> 73.3 mm, bodytrack's
-// 14 joints; from its masks 54.5). Chosen on the realism tuning clips from their videos (4 seeds, mean of the 6
-// clips): 0 (only a piece right under its box) 105.2 mm, 0.25 96.2, 0.4 95.8, 0.8 95.8; the smallest of the
-// plateau, which keeps the fewest stray pieces below people.
+// of sight (35_28-tune-trousers-occl from its video, 4 seeds: 132.4 -> 73.3 mm,
+// bodytrack's 14 joints; from its masks 54.5). Chosen on the realism tuning clips from
+// their videos (4 seeds, mean of the 6 clips): 0 (only a piece right under its box)
+// 105.2 mm, 0.25 96.2, 0.4 95.8, 0.8 95.8; the smallest of the plateau, which keeps the
+// fewest stray pieces below people.
 constexpr double kFootGap = 0.4;
 void RemoveSpecks(cv::Mat* mask, double min_area);
 
