@@ -7,6 +7,7 @@
 
 #include "io/base/error.h"
 #include "io/cli/progress.h"
+#include "tracker/frames/foreground.h"
 #include "tracker/frames/frame_source_factory.h"
 #include "tracker/frames/walker_points.h"
 
@@ -47,7 +48,7 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   ProgressLine line("walkers", 0.5);
   const int total = live ? spec.max_frames : source->NumFrames();
   Frame frame;
-  std::vector<double> shares;
+  ForegroundShare share;
   while (source->Next(&frame)) {
     if (frame.dropped) {
       finder.Skip();  // keeps the frame numbers on the video's clock
@@ -55,7 +56,7 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
     }
     const cv::Mat& mask = frame.masks.front();
     finder.Add(mask);
-    shares.push_back(static_cast<double>(cv::countNonZero(mask)) / mask.total());
+    share.Add(mask);
     line.Update(live ? finder.frames() : frame.index + 1, total, "frames", "finding heads and feet");
   }
   line.Finish();
@@ -65,10 +66,7 @@ WalkerEvidence ReadWalkersFromVideo(const WalkerVideo& video) {
   evidence.frames = finder.frames();
   evidence.fps = source->fps();
   evidence.points = finder.Points();
-  if (!shares.empty()) {
-    std::nth_element(shares.begin(), shares.begin() + shares.size() / 2, shares.end());
-    evidence.foreground_share = shares[shares.size() / 2];
-  }
+  evidence.foreground_share = share.Median();
   return evidence;
 }
 

@@ -273,6 +273,16 @@ cv::Mat ForegroundExtractor::Apply(const cv::Mat& bgr) {
   return mask;
 }
 
+void ForegroundShare::Add(const cv::Mat& mask) {
+  shares_.push_back(static_cast<double>(cv::countNonZero(mask)) / static_cast<double>(mask.total()));
+}
+
+double ForegroundShare::Median() {
+  if (shares_.empty()) return 0;
+  std::nth_element(shares_.begin(), shares_.begin() + static_cast<std::ptrdiff_t>(shares_.size() / 2), shares_.end());
+  return shares_[shares_.size() / 2];
+}
+
 void RemoveSpecks(cv::Mat* mask, double min_area) {
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(*mask, labels, stats, centroids, 8, CV_32S);

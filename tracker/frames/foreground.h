@@ -127,6 +127,19 @@ std::vector<cv::Mat> MovingRegions(const std::vector<cv::Mat>& images, double mi
 // and their regions merge now and then (vtest.avi's reached 5 people's height).
 int MovingPersonHeight(const std::vector<cv::Mat>& moving);
 
+// How much of a camera's masks is foreground, frame after frame: the median share of their
+// pixels. A fixed camera's is its people, a few percent; most of the image, most of the
+// time, is a camera that moves (`calibrate --walkers` refuses it, `track` says so).
+class ForegroundShare {
+ public:
+  void Add(const cv::Mat& mask);  // CV_8UC1, non-zero = foreground
+  bool empty() const { return shares_.empty(); }
+  double Median();  // 0 when empty
+
+ private:
+  std::vector<double> shares_;
+};
+
 // Removes the connected components smaller than `min_area` of the image from a binary
 // mask (255 = foreground), in place, but for those under a larger one: at most kFootGap
 // of its height below it, with at least half of their columns within its columns. A foot

@@ -26,6 +26,7 @@
 #include "prior/model/model_file.h"
 #include "tracker/frames/clip_source.h"
 #include "tracker/frames/floor_reflection.h"
+#include "tracker/frames/foreground.h"
 #include "tracker/frames/occluder_masks.h"
 #include "tracker/frames/prefetch_source.h"
 #include "tracker/frames/video_frame_source.h"
@@ -316,10 +317,10 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
   const auto started = std::chrono::steady_clock::now();
   double latency_sum = 0;
   int latency_count = 0, frames_seen = 0;
-  std::vector<std::vector<double>> shares(run.cameras.size());  // per camera, per frame
+  std::vector<ForegroundShare> shares(run.cameras.size());
   const auto on_frame = [&](const Frame& frame, TrackedFrame& f) {
     for (size_t c = 0; c < shares.size() && c < frame.masks.size() && !frame.dropped; ++c)
-      if (!frame.masks[c].empty()) shares[c].push_back(static_cast<double>(cv::countNonZero(frame.masks[c])) / frame.masks[c].total());
+      if (!frame.masks[c].empty()) shares[c].Add(frame.masks[c]);
     if (result.live && !frame.dropped) {
       f.latency_ms = frame.latency_ms +
                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame.ready).count();
@@ -419,12 +420,9 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
     result.shadow_light_deg = multi->shadow_light()->Angles();
     result.shadow_light_frame = multi->shadow_light_frame();
   }
-  for (std::vector<double>& s : shares) {
-    if (s.empty()) break;  // a camera that gave no mask: none is measured
-    std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
-    run.foreground_share.push_back(s[s.size() / 2]);
-  }
-  if (run.foreground_share.size() != run.cameras.size()) run.foreground_share.clear();
+  // Measured when every camera gave masks.
+  if (std::none_of(shares.begin(), shares.end(), [](const ForegroundShare& s) { return s.empty(); }))
+    for (ForegroundShare& s : shares) run.foreground_share.push_back(s.Median());
   for (const TrackedFrame& f : run.frames) run.tracking_seconds += f.seconds;
   for (const PeopleFrame& f : result.people) run.tracking_seconds += f.seconds;
   result.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
