@@ -12,13 +12,13 @@
 
 #include <opencv2/highgui.hpp>
 
+#include "calibration/cli/calibration_commands.h"
 #include "io/base/error.h"
 #include "io/base/output_batch.h"
 #include "io/base/png_file.h"
 #include "io/cli/device_commands.h"
 #include "io/cli/process_clock.h"
 #include "io/cli/progress.h"
-#include "calibration/cli/calibration_commands.h"
 #include "io/gait/data_root.h"
 #include "tracker/cli/walker_video.h"
 #include "tracker/clip/tracking_suite.h"
