@@ -901,7 +901,13 @@ std::unique_ptr<Tracker> Tracker::Follower(int layers) const {
   return follower;
 }
 
-std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) const {
+bool Tracker::ExplainedWell(const TrackedFrame& estimate) const {
+  const bool drawn = std::any_of(estimate.cameras.begin(), estimate.cameras.end(),
+                                 [](const CameraScore& c) { return c.model_px > 0; });
+  return estimate.status == TrackStatus::kTracked && drawn && estimate.MeanIou() >= options_.lost_iou;
+}
+
+std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames, size_t lead) const {
   if (!legs_by_phase_ || !started_ || frames.size() < 2) return {};
   // The second pass starts from particles that have found the person: it searches with
   // half the layers. On the tuning clips the same (94.2 mm either way, 4 seeds), and a
@@ -922,7 +928,7 @@ std::vector<TrackedFrame> Tracker::BackOver(const std::vector<Frame>& frames) co
     f.index = 2 * last.index - frames[i].index;
     f.time_s = 2 * last.time_s - frames[i].time_s;
     TrackedFrame estimate = back.Step(f);
-    if (estimate.status == TrackStatus::kLost) break;
+    if (estimate.status == TrackStatus::kLost || (i < lead && !ExplainedWell(estimate))) break;
     estimate.index = frames[i].index;
     estimate.time_s = frames[i].time_s;
     turn(estimate.state.data());
@@ -1137,17 +1143,26 @@ StartBackOver::StartBackOver(const Tracker* tracker)
     : tracker_(tracker), armed_(tracker->options().start_backwards_s > 0) {}
 
 void StartBackOver::Add(const Frame& frame, TrackedFrame estimate, std::vector<Estimate>* ready) {
-  const bool lost = estimate.status == TrackStatus::kLost;
-  held_.push_back({frame, std::move(estimate)});
-  if (lost) {
+  const double backwards_s = tracker_->options().start_backwards_s;
+  if (estimate.status == TrackStatus::kLost) {
     // Lost before the start was gone over: the frames stand as tracked (or as gone back
-    // over while the legs settled). The next start (a restart) is gone over in its turn.
-    armed_ = tracker_->options().start_backwards_s > 0;
-    return Flush(ready);
+    // over while the legs settled). The next start (a restart) is gone over in its turn,
+    // and this frame waits for it as a lead-in.
+    if (held_.size() > lead_) Flush(ready);
+    armed_ = backwards_s > 0;
+    held_.push_back({frame, std::move(estimate)});
+    ++lead_;
+    while (lead_ > 0 && !(held_.back().frame.time_s - held_.front().frame.time_s < backwards_s)) {
+      ready->push_back(std::move(held_.front()));
+      held_.erase(held_.begin());
+      --lead_;
+    }
+    return;
   }
+  held_.push_back({frame, std::move(estimate)});
   if (!armed_) return Flush(ready);
   if (!back_) {
-    if (frame.time_s - held_.front().frame.time_s < tracker_->options().start_backwards_s) return;
+    if (frame.time_s - held_[lead_].frame.time_s < backwards_s) return;
     back_epoch_ = tracker_->leg_order_epoch();
     back_ = GoBackOver();
   }
@@ -1168,7 +1183,7 @@ StartBackOver::SecondPass StartBackOver::GoBackOver() {
   std::vector<TrackedFrame> first;
   for (const Estimate& e : held_) frames.push_back(e.frame), first.push_back(e.estimate);
   back_end_ = held_.size();
-  return GoBack(*tracker_, frames, first);
+  return GoBack(*tracker_, frames, first, lead_);
 }
 
 void StartBackOver::Apply(SecondPass back) {
@@ -1185,15 +1200,19 @@ void StartBackOver::Apply(SecondPass back) {
 }
 
 StartBackOver::SecondPass StartBackOver::GoBack(const Tracker& tracker, const std::vector<Frame>& frames,
-                                                const std::vector<TrackedFrame>& first) {
+                                                const std::vector<TrackedFrame>& first, size_t lead) {
   SecondPass back;
-  back.estimates = tracker.BackOver(frames);
+  back.estimates = tracker.BackOver(frames, lead);
   // The frames before the last one, as far back as the second tracker went. The second
   // pass is kept unless it explains their masks worse (TrackerOptions::back_over_margin):
   // a track gone wrong by the frame it goes back from (legs swapped) carries that back.
+  // Judged on the start's own frames: the lead-in's were lost the first time.
   const size_t from = first.size() - 1 - back.estimates.size();
   const std::vector<TrackedFrame> forward(first.begin() + static_cast<std::ptrdiff_t>(from), first.end() - 1);
-  back.kept = KeepSecond(forward, back.estimates, tracker.options().back_over_margin);
+  const size_t own = std::max(from, lead) - from;
+  back.kept = KeepSecond(std::vector<TrackedFrame>(forward.begin() + static_cast<std::ptrdiff_t>(own), forward.end()),
+                         std::vector<TrackedFrame>(back.estimates.begin() + static_cast<std::ptrdiff_t>(own), back.estimates.end()),
+                         tracker.options().back_over_margin);
   for (size_t i = 0; i < back.estimates.size(); ++i) {
     back.estimates[i].seconds += forward[i].seconds;
     back.estimates[i].evaluations += forward[i].evaluations;
@@ -1214,6 +1233,7 @@ void StartBackOver::Flush(std::vector<Estimate>* ready) {
   back_.reset();
   for (Estimate& e : held_) ready->push_back(std::move(e));
   held_.clear();
+  lead_ = 0;
 }
 
 std::vector<TrackedFrame> TrackSource(FrameSource* source, Tracker* tracker,

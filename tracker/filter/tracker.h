@@ -176,7 +176,9 @@ struct TrackerOptions {
   // Each start is gone over again backwards (TrackSource, BackOver): once the track has run
   // this long from the start without a loss, a second tracker goes from its state there
   // back to the start's first frame (each particle walking the other way), and its
-  // estimates replace the first pass's. A start reads where the person is from a few
+  // estimates replace the first pass's; it goes on back into the frames lost in the
+  // start_backwards_s before the start while it explains them well (StartBackOver: a
+  // person coming into view, or found again). A start reads where the person is from a few
   // frames and is least sure at the first: in depth, with one camera, until the feet show
   // (the occluded monocular clip's feet are behind a table for 20 frames: 190-520 mm off
   // at frame 0). 0: never; a live camera's frames are not held back for it. Chosen on the
@@ -413,8 +415,12 @@ class Tracker {
   // the first, with half the annealing layers. Their estimates in time order, as far back
   // as they stayed tracked (the first lost going back ends them); empty when the state
   // space cannot be run backwards (only a manifold's cadence has a sign) or nothing is
-  // tracked. This tracker is unchanged.
-  std::vector<TrackedFrame> BackOver(const std::vector<Frame>& frames) const;
+  // tracked. The first `lead` frames are a lead-in, frames this tracker had lost before
+  // the start (StartBackOver): going back through them ends at the first not explained
+  // well (ExplainedWell). This tracker is unchanged.
+  std::vector<TrackedFrame> BackOver(const std::vector<Frame>& frames, size_t lead = 0) const;
+  // Tracked, drawn in some camera and explaining the masks there (mean IoU lost_iou or more).
+  bool ExplainedWell(const TrackedFrame& estimate) const;
   // An estimate's silhouette (as Step drew it to score it) set in each camera's CV_8UC1
   // mask, the cameras' size (not cleared first); nothing for an estimate without a state.
   void DrawEstimate(const TrackedFrame& frame, std::vector<cv::Mat>* masks) const;
@@ -580,8 +586,13 @@ void RunSource(FrameSource* source, int start_frames, const std::function<void(c
 
 // Holds each start's first frames' estimates until the start has been gone over
 // backwards (TrackerOptions::start_backwards_s, Tracker::BackOver), then gives them
-// replaced by the second pass's; every other frame at once. For TrackSource and any
-// caller that steps a tracker itself.
+// replaced by the second pass's; every other frame at once, but the frames lost in the
+// last start_backwards_s before a start (a lead-in): the second pass goes on back into
+// them while it explains them well (Tracker::ExplainedWell), and so a person coming into
+// view is tracked from the frames the start could not use. A start is made only on
+// someone wholly in some view (tracker.h, Guess): a webcam's walker entering from the side
+// was lost for the 13 frames (0.43 s) their blob touched the image's edge, head and feet
+// already in view. For TrackSource and any caller that steps a tracker itself.
 class StartBackOver {
  public:
   struct Estimate {
@@ -594,6 +605,7 @@ class StartBackOver {
   // its leg order is settled (Tracker::LegsSettled). The second pass goes back from the
   // frame at start_backwards_s, and again from the last frame held when the leg order
   // changed since (Tracker::leg_order_epoch): it carries back the order it starts from.
+  // Lost frames wait start_backwards_s as a lead-in for the next start.
   void Add(const Frame& frame, TrackedFrame estimate, std::vector<Estimate>* ready);
   // Whatever is held (the frames ended before the start was gone over), with the second
   // pass where it went back while the legs settled.
@@ -606,13 +618,14 @@ class StartBackOver {
   // A start's frames gone back over (Tracker::BackOver of `frames`; `first` the first
   // pass's estimates of them): the second pass's estimates of the frames before the last,
   // as far back as it went, each costing both passes; `kept` whether they replace the
-  // first's (KeepSecond, TrackerOptions::back_over_margin).
+  // first's (KeepSecond, TrackerOptions::back_over_margin, judged on the frames after
+  // the first `lead`, the start's own: the lead-in's were lost in the first pass).
   struct SecondPass {
     std::vector<TrackedFrame> estimates;
     bool kept = false;
   };
   static SecondPass GoBack(const Tracker& tracker, const std::vector<Frame>& frames,
-                           const std::vector<TrackedFrame>& first);
+                           const std::vector<TrackedFrame>& first, size_t lead = 0);
 
  private:
   // Goes back over the frames held (GoBack), from the last; back_end_ their number.
@@ -622,7 +635,8 @@ class StartBackOver {
   void Apply(SecondPass back);
 
   const Tracker* tracker_;
-  std::vector<Estimate> held_;  // since the start, not given yet
+  std::vector<Estimate> held_;  // since the start, not given yet, after the lead-in
+  size_t lead_ = 0;             // held_'s first frames lost before the start (the lead-in)
   bool armed_;                  // the frames held are a start's, not gone over yet
   std::optional<SecondPass> back_;  // gone back over, waiting for the legs to settle
   size_t back_end_ = 0;             // back_ went back from held_[back_end_ - 1]...

@@ -1065,11 +1065,14 @@ TEST(Tracker, AStartFromPastFramesIsWhereTheWalkerIsAtTheLast) {
 
 // A walker coming into a camera's view from its side: one camera of the clip, its image
 // cut at the middle of the walker's box at the first frame on the side they come from (the
-// principal point moved with the masks, so the geometry is the clip's). Until they are
-// wholly in view the blobs are slices (no start is made on them); the start at the first
-// frame where they are whole reads their travel from the slices before it. It read one
-// frame: any heading, and on the webcam clip 39_10 a start 44 degrees off.
-TEST(Tracker, AWalkerComingInFromTheSideStartsWithTheirTravel) {
+// principal point moved with the masks, so the geometry is the clip's). Every frame of the
+// clip so cut; `whole` the first where the walker is clear of the cut edge.
+struct SideEntry {
+  Camera camera;
+  std::vector<Frame> frames;
+  int whole = -1;
+};
+SideEntry ComingInFromTheSide() {
   const Fixture& f = Shared();
   const ClipGroundTruth& truth = f.truth;
   // The camera the walker crosses fastest.
@@ -1084,27 +1087,36 @@ TEST(Tracker, AWalkerComingInFromTheSideStartsWithTheirTravel) {
   const cv::Rect a = cv::boundingRect(ClipFrameAt(truth, f.clip, 0).masks[cam]);
   const cv::Rect b = cv::boundingRect(ClipFrameAt(truth, f.clip, kFrames - 1).masks[cam]);
   const bool rightwards = b.x > a.x;  // coming in from the left edge
-  Camera camera = truth.cameras[cam];
+  SideEntry entry;
+  entry.camera = truth.cameras[cam];
   const int middle = a.x + a.width / 2;
-  const cv::Rect kept = rightwards ? cv::Rect(middle, 0, camera.width - middle, camera.height)
-                                   : cv::Rect(0, 0, middle + 1, camera.height);
-  camera.cx -= kept.x;
-  camera.width = kept.width;
-  const auto cut = [&](int k) {
+  const cv::Rect kept = rightwards ? cv::Rect(middle, 0, entry.camera.width - middle, entry.camera.height)
+                                   : cv::Rect(0, 0, middle + 1, entry.camera.height);
+  entry.camera.cx -= kept.x;
+  entry.camera.width = kept.width;
+  for (int k = 0; k < kFrames; ++k) {
     Frame frame = ClipFrameAt(truth, f.clip, k);
     frame.masks = {frame.masks[cam](kept).clone()};
-    return frame;
-  };
-  // Up to the first frame where the walker is clear of the cut edge.
-  std::vector<Frame> frames;
-  for (int k = 0; k < kFrames; ++k) {
-    frames.push_back(cut(k));
-    const cv::Rect box = cv::boundingRect(frames.back().masks[0]);
-    if (box.x > 0 && box.x + box.width < kept.width) break;
+    const cv::Rect box = cv::boundingRect(frame.masks[0]);
+    if (entry.whole < 0 && box.x > 0 && box.x + box.width < kept.width) entry.whole = k;
+    entry.frames.push_back(std::move(frame));
   }
-  const int whole = static_cast<int>(frames.size()) - 1;
+  return entry;
+}
+
+// Until the walker coming in is wholly in view the blobs are slices (no start is made on
+// them); the start at the first frame where they are whole reads their travel from the
+// slices before it. It read one frame: any heading, and on the webcam clip 39_10 a start
+// 44 degrees off.
+TEST(Tracker, AWalkerComingInFromTheSideStartsWithTheirTravel) {
+  const Fixture& f = Shared();
+  const ClipGroundTruth& truth = f.truth;
+  const SideEntry entry = ComingInFromTheSide();
+  const int whole = entry.whole;
   ASSERT_GE(whole, 4) << "the walker must come in over some frames";
   ASSERT_LT(whole, kFrames - 1);
+  // Up to the first frame where the walker is clear of the cut edge.
+  const std::vector<Frame> frames(entry.frames.begin(), entry.frames.begin() + whole + 1);
   const Eigen::Vector3d p = truth.frames[0].joints_mm.col(0), q = truth.frames[whole].joints_mm.col(0);
   const double heading = std::atan2(q.x() - p.x(), q.z() - p.z());
   const auto off_deg = [&](double h) {
@@ -1112,11 +1124,11 @@ TEST(Tracker, AWalkerComingInFromTheSideStartsWithTheirTravel) {
   };
   TrackerOptions options;
   options.annealing.particles = 100;
-  Tracker tracker(*f.loaded, {camera}, options);
+  Tracker tracker(*f.loaded, {entry.camera}, options);
   InitialGuess guess;
   ASSERT_TRUE(tracker.Guess(frames, &guess, {}, nullptr, /*at_last=*/true));
-  std::printf("camera %d, whole in view at frame %d: heading %.1f deg off (std %.0f deg), the place %.0f mm off\n",
-              cam, whole, off_deg(guess.heading_rad), guess.heading_std_rad * 180 / std::numbers::pi,
+  std::printf("whole in view at frame %d: heading %.1f deg off (std %.0f deg), the place %.0f mm off\n", whole,
+              off_deg(guess.heading_rad), guess.heading_std_rad * 180 / std::numbers::pi,
               std::hypot(guess.floor_mm.x() - q.x(), guess.floor_mm.y() - q.z()));
   EXPECT_LT(guess.heading_std_rad, std::numbers::pi);  // a heading was read, not "any"
   EXPECT_LT(off_deg(guess.heading_rad), 30);
@@ -1132,6 +1144,40 @@ TEST(Tracker, AWalkerComingInFromTheSideStartsWithTheirTravel) {
       EXPECT_LT(off_deg(out.heading_rad), 30);
     }
   }
+}
+
+// ...and is tracked in the frames before that start too, while it comes in: the start's
+// second pass goes on back into the frames lost before it (StartBackOver's lead-in) while
+// it explains them well. Without the lead-in every frame before the start was lost (a
+// webcam's walker, head and feet in view, for 13 frames).
+TEST(StartBackOver, GoesOnBackIntoTheFramesLostBeforeAStart) {
+  const Fixture& f = Shared();
+  const SideEntry entry = ComingInFromTheSide();
+  ASSERT_GE(entry.whole, 4);
+  TrackerOptions options;
+  options.annealing.particles = 100;
+  options.start_backwards_s = 0.3;  // gone back over within the clip's 25 frames
+  Tracker tracker(*f.loaded, {entry.camera}, options);
+  StartBackOver hold(&tracker);
+  std::vector<StartBackOver::Estimate> given;
+  for (const Frame& frame : entry.frames) hold.Add(frame, tracker.Step(frame), &given);
+  hold.Flush(&given);
+  ASSERT_EQ(given.size(), static_cast<size_t>(kFrames));
+  int before = 0;  // frames before the start now tracked
+  for (int k = 0; k < kFrames; ++k) {
+    const TrackedFrame& e = given[k].estimate;
+    ASSERT_EQ(e.index, k);
+    if (k >= entry.whole || e.status == TrackStatus::kLost) continue;
+    EXPECT_EQ(e.status, TrackStatus::kTracked) << k;
+    EXPECT_GE(e.MeanIou(), options.lost_iou) << k;
+    const double off = (e.joints_mm.col(0) - f.truth.frames[k].joints_mm.col(0)).norm();
+    std::printf("frame %d, before the start at %d: root %.0f mm off, IoU %.2f\n", k, entry.whole, off, e.MeanIou());
+    EXPECT_LT(off, 250) << k;
+    ++before;
+  }
+  // The frames just before the start, the walker all but whole in view, at least.
+  EXPECT_GE(before, 2);
+  for (int k = entry.whole - 2; k < entry.whole; ++k) EXPECT_NE(given[k].estimate.status, TrackStatus::kLost) << k;
 }
 
 // The joint-angle refinement's random numbers follow the tracker's seed (they ignored it).
