@@ -60,6 +60,7 @@ struct MultiTracker::Person {
   // and the first pass's estimates; then the second pass's, to be given (frame index,
   // estimate).
   bool going_back = false;
+  std::vector<Frame> lead_frames;  // the birth's frames before first_frame (a lead-in)
   std::vector<Frame> held_frames;
   std::vector<TrackedFrame> held_estimates;
   std::vector<std::pair<int, TrackedFrame>> revised;
@@ -286,6 +287,12 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   if (!p->tracker->StartFromFrames(frames, past)) return false;
   p->first_frame = first_frame;
   p->going_back = tracker_options_.start_backwards_s > 0;
+  // Born from the frames the person was seen in: the second pass goes on back into them
+  // (StartBackOver's lead-in), within start_backwards_s of the birth.
+  if (p->going_back)
+    for (const Frame& f : frames)
+      if (f.index < first_frame && frames.back().time_s - f.time_s < tracker_options_.start_backwards_s)
+        p->lead_frames.push_back(f);
   ++next_id_;
   people_.push_back(std::move(p));
   return true;
@@ -293,21 +300,26 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
 
 void MultiTracker::GoBackOver(Person* p, const Frame& mine) const {
   if (!p->going_back) return;
-  if (p->last.status == TrackStatus::kLost) {  // the frames stand as tracked
+  const auto done = [p] {
     p->going_back = false;
+    p->lead_frames.clear();
     p->held_frames.clear();
     p->held_estimates.clear();
-    return;
-  }
+  };
+  if (p->last.status == TrackStatus::kLost) return done();  // the frames stand as tracked
   p->held_frames.push_back(mine);
   p->held_estimates.push_back(p->last);
   if (mine.time_s - p->held_frames.front().time_s < tracker_options_.start_backwards_s) return;
-  StartBackOver::SecondPass back = StartBackOver::GoBack(*p->tracker, p->held_frames, p->held_estimates);
+  // The lead-in first, with no estimates of the first pass (the person was not born yet).
+  std::vector<Frame> frames = p->lead_frames;
+  frames.insert(frames.end(), p->held_frames.begin(), p->held_frames.end());
+  std::vector<TrackedFrame> first(p->lead_frames.size());
+  for (size_t i = 0; i < first.size(); ++i) first[i].index = p->lead_frames[i].index;
+  first.insert(first.end(), p->held_estimates.begin(), p->held_estimates.end());
+  StartBackOver::SecondPass back = StartBackOver::GoBack(*p->tracker, frames, first, p->lead_frames.size());
   if (back.kept)
     for (TrackedFrame& e : back.estimates) p->revised.emplace_back(e.index, std::move(e));
-  p->going_back = false;
-  p->held_frames.clear();
-  p->held_estimates.clear();
+  done();
 }
 
 void MultiTracker::Start(const std::vector<Frame>& frames) {
@@ -412,8 +424,12 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     if (!p->confirmed) {
       for (auto& [index, estimate] : p->revised) {
         const int at = index;  // (clang 14 cannot capture a structured binding)
-        const auto held = std::find_if(p->unreported.begin(), p->unreported.end(), [&](const auto& u) { return u.first == at; });
-        if (held != p->unreported.end()) held->second = std::move(estimate);
+        const auto held = std::find_if(p->unreported.begin(), p->unreported.end(), [&](const auto& u) { return u.first >= at; });
+        if (held != p->unreported.end() && held->first == at) {
+          held->second = std::move(estimate);
+        } else {  // the lead-in, before the birth
+          p->unreported.emplace(held, at, std::move(estimate));
+        }
       }
       p->revised.clear();
       p->unreported.emplace_back(frame.index, p->last);
@@ -456,7 +472,10 @@ void PlaceEarlier(std::vector<PeopleFrame>* frames) {
     const int index = frame_index;  // (clang 14 cannot capture a structured binding)
     const auto at = std::find_if(frames->rbegin(), frames->rend(), [&](const PeopleFrame& t) { return t.index == index; });
     if (at == frames->rend()) continue;
-    if (std::erase(now.born, person.id) > 0) at->born.push_back(person.id);  // the first comes first
+    // Born at the first frame they are in (a lead-in may reach before the frame given so).
+    bool born_later = false;
+    for (auto later = at.base(); later != frames->end(); ++later) born_later = std::erase(later->born, person.id) > 0 || born_later;
+    if (born_later) at->born.push_back(person.id);
     const auto place = std::lower_bound(at->people.begin(), at->people.end(), person.id,
                                         [](const PersonFrame& p, int id) { return p.id < id; });
     if (place != at->people.end() && place->id == person.id) {

@@ -54,7 +54,10 @@
 // stepped in, their tracker goes back over those frames as the person saw them (the
 // others' drawings hidden), and the second pass's estimates replace the first's where
 // they explain the masks as well (back_over_margin); they are given in that frame's
-// `earlier`. Only the birth's start: a person lost before then stays as tracked.
+// `earlier`. Only the birth's start: a person lost before then stays as tracked. The
+// second pass goes on back into the frames the birth saw them in, before the frame they
+// were stepped from, while it explains them well (StartBackOver's lead-in, tracker.h):
+// a birth takes birth_frames of birth_window frames, which were frames missed.
 //
 // Identities are the trackers': each follows its own person by its own dynamics (place,
 // heading, speed, gait phase) and build, and looks again for them only near where those put
@@ -232,8 +235,8 @@ class MultiTracker {
 };
 
 // Puts the last frame's `earlier` estimates into the frames before it in `frames` (in
-// place of the person's estimate there, if any), each person born at the first of them
-// instead of at the last frame.
+// place of the person's estimate there, if any), each person born at the first frame they
+// are in.
 void PlaceEarlier(std::vector<PeopleFrame>* frames);
 
 // Tracks every frame of a source: the first start_frames are looked at to start everyone

@@ -381,7 +381,8 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
       }
       // Written birth_window frames and start_backwards_s late, so that a person confirmed
       // now is drawn in the frames they were followed in before, and a birth's start as
-      // gone back over (PeopleFrame::earlier), as poses.json has them.
+      // gone back over (PeopleFrame::earlier), as poses.json has them: with the lead-in
+      // before the birth, birth_window frames before a frame start_backwards_s old.
       for (const auto& [index, person] : f.earlier) {
         const int wanted = index, id = person.id;  // (clang 14 cannot capture a structured binding)
         const auto at = std::find_if(held.begin(), held.end(), [&](const HeldFrame& h) { return h.frame.index == wanted; });
@@ -395,8 +396,8 @@ TrackJobResult RunTrackJob(const TrackJobOptions& o, const TrackProgress& progre
         std::sort(at->people.begin(), at->people.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       }
       held.push_back({frame, std::move(people)});
-      while (held.size() > static_cast<size_t>(o.multi.birth_window) &&
-             frame.time_s - held.front().frame.time_s >= multi->tracker_options().start_backwards_s)
+      const size_t window = static_cast<size_t>(o.multi.birth_window);
+      while (held.size() > window && frame.time_s - held[window].frame.time_s >= multi->tracker_options().start_backwards_s)
         write_held();
     };
     result.people = TrackPeople(frames, &*multi, on_people, stop);

@@ -256,9 +256,10 @@ TEST(MultiTracker, AWalkerEnteringAtTenFramesASecondIsBornWhereTheyAre) {
               "frames\n",
               enters, r.people.size(), born_at, near, after);
   ASSERT_GE(born_at, 0);
-  // Born after 5 of 8 frames and confirmed after 3 more (measured: 11 frames in; 21 when
-  // started where they were first seen).
-  EXPECT_LE(born_at, enters + 15);
+  // Born after 5 of 8 frames and confirmed after 3 more, and tracked back into the frames
+  // the birth saw them in (the lead-in, multi_tracker.h): measured 5 frames in, 10 without
+  // the lead-in (MOTA 0.844 -> 0.922), 21 when started where they were first seen.
+  EXPECT_LE(born_at, enters + 7);
   EXPECT_GE(near, 0.8 * after);
 }
 
