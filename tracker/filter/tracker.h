@@ -635,8 +635,8 @@ class StartBackOver {
   void Apply(SecondPass back);
 
   const Tracker* tracker_;
-  std::vector<Estimate> held_;  // since the start, not given yet, after the lead-in
-  size_t lead_ = 0;             // held_'s first frames lost before the start (the lead-in)
+  std::vector<Estimate> held_;  // not given yet: the lead-in, then the start's frames
+  size_t lead_ = 0;             // the lead-in's frames (lost, waiting for a start)
   bool armed_;                  // the frames held are a start's, not gone over yet
   std::optional<SecondPass> back_;  // gone back over, waiting for the legs to settle
   size_t back_end_ = 0;             // back_ went back from held_[back_end_ - 1]...
