@@ -1208,10 +1208,9 @@ StartBackOver::SecondPass StartBackOver::GoBack(const Tracker& tracker, const st
   // a track gone wrong by the frame it goes back from (legs swapped) carries that back.
   // Judged on the start's own frames: the lead-in's were lost the first time.
   const size_t from = first.size() - 1 - back.estimates.size();
-  const std::vector<TrackedFrame> forward(first.begin() + static_cast<std::ptrdiff_t>(from), first.end() - 1);
+  const std::span<const TrackedFrame> forward(first.data() + from, back.estimates.size());
   const size_t own = std::max(from, lead) - from;
-  back.kept = KeepSecond(std::vector<TrackedFrame>(forward.begin() + static_cast<std::ptrdiff_t>(own), forward.end()),
-                         std::vector<TrackedFrame>(back.estimates.begin() + static_cast<std::ptrdiff_t>(own), back.estimates.end()),
+  back.kept = KeepSecond(forward.subspan(own), std::span<const TrackedFrame>(back.estimates).subspan(own),
                          tracker.options().back_over_margin);
   for (size_t i = 0; i < back.estimates.size(); ++i) {
     back.estimates[i].seconds += forward[i].seconds;
@@ -1220,7 +1219,7 @@ StartBackOver::SecondPass StartBackOver::GoBack(const Tracker& tracker, const st
   return back;
 }
 
-bool StartBackOver::KeepSecond(const std::vector<TrackedFrame>& first, const std::vector<TrackedFrame>& second,
+bool StartBackOver::KeepSecond(std::span<const TrackedFrame> first, std::span<const TrackedFrame> second,
                                double margin) {
   if (first.size() != second.size() || first.empty()) return false;
   double first_iou = 0, second_iou = 0;

@@ -119,6 +119,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -613,7 +614,7 @@ class StartBackOver {
   // Whether the second pass's estimates of some frames replace the first's: their mean
   // IoU (TrackedFrame::MeanIou) is at least the first's less `margin`
   // (TrackerOptions::back_over_margin). False for no frames.
-  static bool KeepSecond(const std::vector<TrackedFrame>& first, const std::vector<TrackedFrame>& second,
+  static bool KeepSecond(std::span<const TrackedFrame> first, std::span<const TrackedFrame> second,
                          double margin);
   // A start's frames gone back over (Tracker::BackOver of `frames`; `first` the first
   // pass's estimates of them): the second pass's estimates of the frames before the last,

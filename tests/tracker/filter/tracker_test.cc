@@ -339,7 +339,7 @@ TEST(StartBackOver, KeepsTheSecondPassUnlessItExplainsWorse) {
   EXPECT_TRUE(StartBackOver::KeepSecond(good, mixed, 0.02));   // 0.0175 lower on the mean
   EXPECT_FALSE(StartBackOver::KeepSecond(good, mixed, 0.015));
   EXPECT_FALSE(StartBackOver::KeepSecond({}, {}, 1));
-  EXPECT_FALSE(StartBackOver::KeepSecond(good, {good[0]}, 1));
+  EXPECT_FALSE(StartBackOver::KeepSecond(good, std::vector<TrackedFrame>{good[0]}, 1));
 }
 
 // A start's frames wait for its leg order to settle (the other order's trial decided),
