@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 
 #include <Eigen/Cholesky>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/base/error.h"
@@ -23,7 +25,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // Accumulates seed runs into one row.
-void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, const ClipGroundTruth& truth) {
+void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, const ClipGroundTruth& truth,
+         const fs::path& clip) {
   const RunErrors& e = *r.errors;
   row->bt14_mm += e.bodytrack14.absolute_mm;
   row->bt14_root_mm += e.bodytrack14.root_relative_mm;
@@ -50,7 +53,7 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
     lost += f.status == TrackStatus::kLost;
     evaluations += f.evaluations;
     status.push_back(f.status);
-    in_view.push_back(PersonInView(truth, f.index));
+    in_view.push_back(PersonInView(truth, f.index, clip));
   }
   const LostInView lost_in_view = CountLostInView(status, in_view);
   const std::vector<std::string> names = model.skeleton().BoneNames();
@@ -129,9 +132,27 @@ void Text(cv::Mat& image, const std::string& text, cv::Point at, double scale = 
 
 }  // namespace
 
-bool PersonInView(const ClipGroundTruth& truth, int frame) {
-  return JointsHalfInView(truth.render_cameras.empty() ? truth.cameras : truth.render_cameras,
-                          truth.frames.at(frame).joints_mm);
+bool PersonInView(const ClipGroundTruth& truth, int frame, const fs::path& clip) {
+  const Eigen::Matrix3Xd& joints = truth.frames.at(frame).joints_mm;
+  const std::vector<Camera>& cameras = truth.render_cameras.empty() ? truth.cameras : truth.render_cameras;
+  for (size_t c = 0; c < cameras.size(); ++c) {
+    if (!JointsHalfInView({cameras[c]}, joints)) continue;
+    const fs::path mask_path = ClipPaths{clip}.Mask(truth.cameras[c].name, frame);
+    std::error_code ec;
+    if (clip.empty() || !fs::exists(mask_path, ec)) return true;
+    double top = std::numeric_limits<double>::infinity(), bottom = -top;
+    for (int j = 0; j < joints.cols(); ++j) {
+      Eigen::Vector2d p;
+      if (!cameras[c].Project(joints.col(j), &p)) continue;
+      top = std::min(top, p.y());
+      bottom = std::max(bottom, p.y());
+    }
+    const cv::Mat mask = cv::imread(mask_path.string(), cv::IMREAD_GRAYSCALE);
+    if (mask.empty()) ThrowInputError(mask_path.string(), "cannot read the exact mask");
+    const double height = bottom - top;
+    if (cv::countNonZero(mask) >= kShowsArea * height * height) return true;
+  }
+  return false;
 }
 
 double TriangulatedByWrittenCameras(const ClipGroundTruth& truth, int frames) {
@@ -309,7 +330,7 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
             ThrowInputError(ClipPaths{dir}.GroundTruth().string(), "names no source ASF for the known-skeleton run");
           job.asf = truth.source_asf;
         }
-        Add(&row, RunTrackJob(job), *models[method.model], truth);
+        Add(&row, RunTrackJob(job), *models[method.model], truth, dir);
       }
       Average(&row);
       rows.push_back(row);

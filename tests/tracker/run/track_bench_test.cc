@@ -8,6 +8,8 @@
 #include <cstdio>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "io/base/text_reader.h"
 #include "io/gait/gait_dataset.h"
@@ -81,6 +83,34 @@ TEST(TrackBench, PersonInViewWhenHalfTheJointsAreInAnImage) {
   truth.render_cameras.push_back(LookAtCamera("r", 320, 240, 280, {20000, 1000, -5000}, {20000, 1000, 0}));
   EXPECT_FALSE(PersonInView(truth, 0));
   EXPECT_TRUE(PersonInView(truth, 1));
+}
+
+TEST(TrackBench, PersonHiddenBehindAnObjectIsNotInView) {
+  // A column of joints 1.5 m tall, 5 m from a camera of focal 280 px: 84 px tall, so it
+  // shows when the exact mask holds kShowsArea * 84^2 = 318 px or more.
+  ClipGroundTruth truth;
+  truth.cameras.push_back(LookAtCamera("cam0", 320, 240, 280, {0, 1000, -5000}, {0, 1000, 0}));
+  ClipFrame frame;
+  frame.joints_mm.resize(3, 4);
+  frame.joints_mm << 0, 0, 0, 0, 0, 500, 1000, 1500, 0, 0, 0, 0;
+  for (int k = 0; k < 4; ++k) truth.frames.push_back(frame);
+  test::TempDir dir;
+  const ClipPaths paths{dir.path()};
+  std::filesystem::create_directories(paths.MaskFolder("cam0"));
+  const auto write = [&](int k, int pixels) {  // a mask with `pixels` set
+    cv::Mat mask = cv::Mat::zeros(240, 320, CV_8UC1);
+    for (int i = 0; i < pixels; ++i) mask.at<uint8_t>(100 + i / 20, 150 + i % 20) = 255;
+    ASSERT_TRUE(cv::imwrite(paths.Mask("cam0", k).string(), mask));
+  };
+  write(0, 0);    // wholly behind a pillar
+  write(1, 300);  // a leg beside it
+  write(2, 340);  // a third of the person
+  // frame 3 was dropped: no mask, the joints decide
+  EXPECT_FALSE(PersonInView(truth, 0, dir.path()));
+  EXPECT_FALSE(PersonInView(truth, 1, dir.path()));
+  EXPECT_TRUE(PersonInView(truth, 2, dir.path()));
+  EXPECT_TRUE(PersonInView(truth, 3, dir.path()));
+  EXPECT_TRUE(PersonInView(truth, 0));  // no folder: the joints alone
 }
 
 TEST(TrackBench, TriangulatedByTheWrittenCamerasIsWhereTheyPutTheTruth) {
