@@ -613,9 +613,10 @@ class StartBackOver {
   void Flush(std::vector<Estimate>* ready);
   // Whether the second pass's estimates of some frames replace the first's: their mean
   // IoU (TrackedFrame::MeanIou) is at least the first's less `margin`
-  // (TrackerOptions::back_over_margin). False for no frames.
+  // (TrackerOptions::back_over_margin), a frame drawn nowhere and seeing nobody counting
+  // `unseen_iou` (TrackerOptions::lost_iou: neither a fit nor a loss). False for no frames.
   static bool KeepSecond(std::span<const TrackedFrame> first, std::span<const TrackedFrame> second,
-                         double margin);
+                         double margin, double unseen_iou = TrackerOptions().lost_iou);
   // A start's frames gone back over (Tracker::BackOver of `frames`; `first` the first
   // pass's estimates of them): the second pass's estimates of the frames before the last,
   // as far back as it went, each costing both passes; `kept` whether they replace the

@@ -340,6 +340,21 @@ TEST(StartBackOver, KeepsTheSecondPassUnlessItExplainsWorse) {
   EXPECT_FALSE(StartBackOver::KeepSecond(good, mixed, 0.015));
   EXPECT_FALSE(StartBackOver::KeepSecond({}, {}, 1));
   EXPECT_FALSE(StartBackOver::KeepSecond(good, std::vector<TrackedFrame>{good[0]}, 1));
+  // Drawn nowhere and seeing nobody (behind a pillar) is neither a fit nor a loss: it
+  // counts the unseen IoU (0.2), not MeanIou's 1. Not better than 0.8 on the walker; better
+  // than 0.1 predicted beside the pillar.
+  TrackedFrame hidden;
+  hidden.cameras = {CameraScore()};
+  ASSERT_EQ(hidden.MeanIou(), 1.0);
+  const std::vector<TrackedFrame> behind(3, hidden), beside(3, frame(18)), partly = {good[0], hidden, hidden};
+  ASSERT_NEAR(beside[0].MeanIou(), 18.0 / 162, 1e-12);
+  EXPECT_FALSE(StartBackOver::KeepSecond(good, behind, 0.02, 0.2));
+  EXPECT_TRUE(StartBackOver::KeepSecond(behind, good, 0.02, 0.2));
+  EXPECT_TRUE(StartBackOver::KeepSecond(beside, behind, 0.02, 0.2));
+  EXPECT_FALSE(StartBackOver::KeepSecond(behind, beside, 0.02, 0.2));
+  EXPECT_TRUE(StartBackOver::KeepSecond(behind, behind, 0, 0.2));
+  EXPECT_FALSE(StartBackOver::KeepSecond(good, partly, 0.3, 0.2));  // (0.8 + 0.4) / 3 a frame: 0.4 lower
+  EXPECT_TRUE(StartBackOver::KeepSecond(good, partly, 0.41, 0.2));
 }
 
 // A start's frames wait for its leg order to settle (the other order's trial decided),
