@@ -95,7 +95,7 @@ bool TrackerOptions::Check(std::string* why) const {
          shape.Check(why) && travel.Check(why);
 }
 
-double TrackedFrame::MeanIou() const {
+double TrackedFrame::MeanIou(double none) const {
   double sum = 0;
   int counted = 0;
   for (const CameraScore& c : cameras) {
@@ -103,7 +103,7 @@ double TrackedFrame::MeanIou() const {
     sum += c.Iou();
     ++counted;
   }
-  return counted > 0 ? sum / counted : 1.0;
+  return counted > 0 ? sum / counted : none;
 }
 
 Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, const TrackerOptions& options,
@@ -1228,13 +1228,11 @@ bool StartBackOver::KeepSecond(std::span<const TrackedFrame> first, std::span<co
   // seed 4: frames 34-41 at IoU 0.67-0.71 replaced by a body on the pillar); at 0, one
   // that went behind the pillar with the walker lost to one predicted beside it (the same
   // clip's uncalibrated twin, seed 4: 232 -> 287 mm).
-  const auto explained = [unseen_iou](const TrackedFrame& f) {
-    for (const CameraScore& c : f.cameras)
-      if (c.observed_px > 0 || c.model_px > 0) return f.MeanIou();
-    return unseen_iou;
-  };
   double first_iou = 0, second_iou = 0;
-  for (size_t i = 0; i < first.size(); ++i) first_iou += explained(first[i]), second_iou += explained(second[i]);
+  for (size_t i = 0; i < first.size(); ++i) {
+    first_iou += first[i].MeanIou(unseen_iou);
+    second_iou += second[i].MeanIou(unseen_iou);
+  }
   return second_iou >= first_iou - margin * static_cast<double>(first.size());
 }
 

@@ -357,8 +357,9 @@ struct TrackedFrame {
                                     // one seed gives one poses.json)
 
   // Over the cameras that see someone where the person is expected or draw the estimate
-  // (a camera with neither is no evidence either way); 1 when there are none.
-  double MeanIou() const;
+  // (a camera with neither is no evidence either way); `none` when there are none (1: no
+  // evidence of loss).
+  double MeanIou(double none = 1.0) const;
 };
 
 class Tracker {

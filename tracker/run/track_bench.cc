@@ -24,9 +24,9 @@ namespace jgpm {
 namespace fs = std::filesystem;
 namespace {
 
-// Accumulates seed runs into one row.
+// Accumulates seed runs into one row; `in_view_at`: PersonInView of each clip frame.
 void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, const ClipGroundTruth& truth,
-         const fs::path& clip) {
+         const std::vector<bool>& in_view_at) {
   const RunErrors& e = *r.errors;
   row->bt14_mm += e.bodytrack14.absolute_mm;
   row->bt14_root_mm += e.bodytrack14.root_relative_mm;
@@ -53,7 +53,7 @@ void Add(TrackBenchRow* row, const TrackJobResult& r, const GaitModel& model, co
     lost += f.status == TrackStatus::kLost;
     evaluations += f.evaluations;
     status.push_back(f.status);
-    in_view.push_back(PersonInView(truth, f.index, clip));
+    in_view.push_back(in_view_at.at(f.index));
   }
   const LostInView lost_in_view = CountLostInView(status, in_view);
   const std::vector<std::string> names = model.skeleton().BoneNames();
@@ -137,9 +137,10 @@ bool PersonInView(const ClipGroundTruth& truth, int frame, const fs::path& clip)
   const std::vector<Camera>& cameras = truth.render_cameras.empty() ? truth.cameras : truth.render_cameras;
   for (size_t c = 0; c < cameras.size(); ++c) {
     if (!JointsHalfInView({cameras[c]}, joints)) continue;
+    if (clip.empty()) return true;
     const fs::path mask_path = ClipPaths{clip}.Mask(truth.cameras[c].name, frame);
     std::error_code ec;
-    if (clip.empty() || !fs::exists(mask_path, ec)) return true;
+    if (!fs::exists(mask_path, ec)) return true;
     double top = std::numeric_limits<double>::infinity(), bottom = -top;
     for (int j = 0; j < joints.cols(); ++j) {
       Eigen::Vector2d p;
@@ -301,6 +302,8 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
     std::vector<PriorFloors> floors(models.size());
     for (size_t m = 0; m < models.size(); ++m) floors[m] = ModelFloors(*models[m], truth, frames);
     const double triangulated = TriangulatedByWrittenCameras(truth, frames);
+    std::vector<bool> in_view;  // the same for every method and seed: each mask read once
+    for (int k = 0; k < frames; ++k) in_view.push_back(PersonInView(truth, k, dir));
     for (const Method& method : methods) {
       TrackBenchRow row;
       row.clip = clip.name;
@@ -330,7 +333,7 @@ std::vector<TrackBenchRow> RunTrackBench(const std::vector<SuiteClip>& clips, co
             ThrowInputError(ClipPaths{dir}.GroundTruth().string(), "names no source ASF for the known-skeleton run");
           job.asf = truth.source_asf;
         }
-        Add(&row, RunTrackJob(job), *models[method.model], truth, dir);
+        Add(&row, RunTrackJob(job), *models[method.model], truth, in_view);
       }
       Average(&row);
       rows.push_back(row);
