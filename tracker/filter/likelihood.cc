@@ -6,6 +6,7 @@
 
 #include "io/base/error.h"
 #include "tracker/body/cast_shadow.h"
+#include "tracker/filter/occluder_layers.h"
 
 namespace jgpm {
 namespace {
@@ -60,7 +61,10 @@ SilhouetteLikelihood::SilhouetteLikelihood(const std::vector<Camera>& cameras, c
     : options_(options) {
   std::string why;
   if (!options.Check(&why)) ThrowInputError("likelihood options", why);
-  for (const Camera& camera : cameras) renderers_.emplace_back(camera);
+  for (const Camera& camera : cameras) {
+    renderers_.emplace_back(camera);
+    centres_.push_back(camera.CentreInWorld());
+  }
 }
 
 SilhouetteLikelihood::Workspace SilhouetteLikelihood::NewWorkspace() const {
@@ -73,6 +77,16 @@ SilhouetteLikelihood::Workspace SilhouetteLikelihood::NewWorkspace() const {
 CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::Rect& region,
                                                 const cv::Mat& hidden) const {
   return CameraObservation(mask, region, options_.truncation_px, options_.max_hole_px, hidden);
+}
+
+const CameraObservation& SilhouetteLikelihood::Seen(const CameraObservation& observation,
+                                                   const std::vector<Capsule>& capsules, size_t camera) const {
+  const Eigen::Vector3d feet = FloorPointUnder(capsules);
+  const std::vector<PaintedObject>& objects = observation.painted_objects();
+  unsigned subset = 0;
+  for (size_t j = 0; j < objects.size(); ++j)
+    if (Hides(objects[j], feet, centres_[camera])) subset |= 1u << j;
+  return observation.WithHidden(subset);
 }
 
 double SilhouetteLikelihood::Cost(const std::vector<Capsule>& capsules,
@@ -88,7 +102,8 @@ double SilhouetteLikelihood::CostUnder(const Eigen::Vector3d* light, const std::
   if (scores) scores->assign(renderers_.size(), CameraScore());
   double total = 0;
   for (size_t c = 0; c < renderers_.size(); ++c) {
-    const CameraObservation& o = observations[c];
+    // Painted occluders hide only a body behind them (occluder_layers.h).
+    const CameraObservation& o = observations[c].layered() ? Seen(observations[c], capsules, c) : observations[c];
     BitMask& canvas = w->canvas[c];
     w->outline.clear();
     renderers_[c].Draw(capsules, &canvas, &w->outline, options_.outline_step_px);

@@ -113,7 +113,13 @@ class SilhouetteLikelihood {
                    std::vector<CameraScore>* scores = nullptr) const;
 
  private:
+  // What camera `camera` shows a body drawn from `capsules`: with painted objects, the
+  // observation with only those in front of it hidden (occluder_layers.h).
+  const CameraObservation& Seen(const CameraObservation& observation, const std::vector<Capsule>& capsules,
+                                size_t camera) const;
+
   std::vector<BitSilhouetteRenderer> renderers_;
+  std::vector<Eigen::Vector3d> centres_;  // each camera's, in the world (mm)
   LikelihoodOptions options_;
   std::optional<Eigen::Vector3d> light_;
   double floor_mm_ = 0;

@@ -74,4 +74,10 @@ CameraObservation::CameraObservation(const cv::Mat& mask, cv::Rect region, doubl
   width_ = window_.width, height_ = window_.height;
 }
 
+void CameraObservation::SetPaintedObjects(std::vector<PaintedObject> objects,
+                                          std::vector<CameraObservation> by_subset) {
+  CV_Assert(objects.size() < 8 && by_subset.size() + 1 == (1u << objects.size()));
+  painted_ = std::make_shared<const Painted>(Painted{std::move(objects), std::move(by_subset)});
+}
+
 }  // namespace jgpm

@@ -11,9 +11,13 @@
 // does not pull the body's outline, as it does not count in the area term either.
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include <opencv2/core/mat.hpp>
 
 #include "tracker/body/bit_silhouette.h"
+#include "tracker/filter/occluder_layers.h"
 
 namespace jgpm {
 
@@ -62,6 +66,17 @@ class CameraObservation {
                                                                        // and the hidden pixels
   int region_count() const { return region_count_; }
 
+  // Painted occluders in depth (tracker/filter/occluder_layers.h): `objects`, painted
+  // objects near the region, and `by_subset[s]` for s < 2^objects - 1, the observation
+  // made with only those of them whose bit is set in s hidden (the painting's other objects
+  // hidden all the same). This one, made with all of them hidden, is the last subset.
+  void SetPaintedObjects(std::vector<PaintedObject> objects, std::vector<CameraObservation> by_subset);
+  bool layered() const { return painted_ != nullptr; }
+  const std::vector<PaintedObject>& painted_objects() const { return painted_->objects; }
+  const CameraObservation& WithHidden(unsigned subset) const {
+    return subset < painted_->by_subset.size() ? painted_->by_subset[subset] : *this;
+  }
+
  private:
   cv::Mat mask_;
   cv::Mat distance_;  // CV_32F, the window's
@@ -73,6 +88,11 @@ class CameraObservation {
   cv::Rect region_, window_;
   BitMask region_bits_, region_grown_;
   int region_count_ = 0;
+  struct Painted {
+    std::vector<PaintedObject> objects;
+    std::vector<CameraObservation> by_subset;
+  };
+  std::shared_ptr<const Painted> painted_;
 };
 
 }  // namespace jgpm

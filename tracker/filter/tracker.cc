@@ -130,6 +130,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
     ThrowInputError("person", "camera " + std::to_string(options.person.camera) + " of " +
                                   std::to_string(cameras.size()));
   next_choice_ = options.person;
+  painted_objects_.resize(cameras.size());
   if (options.space == StateSpace::kJointSpace) {
     state_model_ = std::make_unique<JointSpaceStateModel>(model, options.known_size);
   } else {
@@ -604,9 +605,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   std::vector<CameraObservation> observations(frame.masks.size());
   pool_.For(static_cast<int>(frame.masks.size()), [&](int begin, int end, int) {
     for (int c = begin; c < end; ++c) {
-      // Others' drawings are in the model's cameras already: not aligned again.
-      const cv::Mat hidden = c < static_cast<int>(frame.hidden.size()) ? frame.hidden[c] : cv::Mat();
-      observations[c] = likelihood_.Observe(alignment_.Apply(c, frame.masks[c]), regions[c], hidden);
+      observations[c] = Observe(frame, c, regions[c]);
     }
   });
   if (held_size_ > 0 && !frame.dropped) {
@@ -969,6 +968,45 @@ double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / m
 const std::vector<cv::Mat>& Tracker::Painted(const Frame& frame) const {
   static const std::vector<cv::Mat> none;
   return options_.hidden_is_painted ? frame.hidden : none;
+}
+
+CameraObservation Tracker::Observe(const Frame& frame, int c, const cv::Rect& region) {
+  // Others' drawings are in the model's cameras already: not aligned again.
+  const cv::Mat hidden = c < static_cast<int>(frame.hidden.size()) ? frame.hidden[c] : cv::Mat();
+  const cv::Mat mask = alignment_.Apply(c, frame.masks[c]);
+  CameraObservation observation = likelihood_.Observe(mask, region, hidden);
+  if (hidden.empty() || !options_.hidden_is_painted) return observation;
+  // A frame's painting is its own copy (others draw on theirs): split again only when it
+  // differs from the last.
+  auto& [painting, objects] = painted_objects_[c];
+  if (painting.size() != hidden.size() || cv::countNonZero(painting != hidden) > 0) {
+    painting = hidden.clone();
+    objects = SplitPainting(hidden, likelihood_.renderer(c).camera());
+  }
+  // The objects a body drawn near the region could be in front of, the three most in view
+  // there at most (the others stay hidden for every body).
+  const int pad = static_cast<int>(std::ceil(options_.likelihood.truncation_px)) + 2;
+  const cv::Rect window = cv::Rect(region.x - pad, region.y - pad, region.width + 2 * pad, region.height + 2 * pad) &
+                          cv::Rect(0, 0, hidden.cols, hidden.rows);
+  std::vector<std::pair<int, size_t>> near;  // (pixels in the window, object)
+  for (size_t k = 0; k < objects.size(); ++k) {
+    const int in_window = window.empty() ? 0 : cv::countNonZero(objects[k].pixels(window));
+    if (in_window > 0 && std::isfinite(objects[k].distance_mm)) near.emplace_back(in_window, k);
+  }
+  if (near.empty()) return observation;
+  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  near.resize(std::min<size_t>(near.size(), 3));
+  std::vector<PaintedObject> chosen;
+  for (const auto& [pixels, k] : near) chosen.push_back(objects[k]);
+  std::vector<CameraObservation> by_subset;
+  for (unsigned s = 0; s + 1 < (1u << chosen.size()); ++s) {
+    cv::Mat fewer = hidden.clone();
+    for (size_t j = 0; j < chosen.size(); ++j)
+      if (!(s & (1u << j))) fewer.setTo(0, chosen[j].pixels);
+    by_subset.push_back(likelihood_.Observe(mask, region, fewer));
+  }
+  observation.SetPaintedObjects(std::move(chosen), std::move(by_subset));
+  return observation;
 }
 
 std::vector<Eigen::Vector2d> Tracker::MeetingPlaces(const PersonSighting& at,

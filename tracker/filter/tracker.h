@@ -484,6 +484,9 @@ class Tracker {
   // The frame's painted occluders, when its hidden pixels are only those
   // (TrackerOptions::hidden_is_painted); else none.
   const std::vector<cv::Mat>& Painted(const Frame& frame) const;
+  // Camera c's observation of the frame; with painted occluders, layered in depth
+  // (occluder_layers.h), each camera's painting split once.
+  CameraObservation Observe(const Frame& frame, int c, const cv::Rect& region);
   // The frame's pose, bone ends, size, width and heading from out->state (as ExactPose).
   void SetEstimate(TrackedFrame* out) const;
   // The build learnt so far, to the body, the state model and the placers.
@@ -545,6 +548,8 @@ class Tracker {
   int bad_frames_ = 0;
   int out_of_view_ = 0;  // frames in a row drawn in no camera
   std::vector<CameraScore> last_drawn_;  // the last frame's estimate, per camera
+  // Per camera: the painting last split, and its objects.
+  std::vector<std::pair<cv::Mat, std::vector<PaintedObject>>> painted_objects_;
   bool hidden_ = false;  // explained badly while someone is seen elsewhere: predicted
   bool behind_ = false;  // hidden behind others tracked with them (Behind)
   double last_good_time_s_ = -1e9;  // the last frame explained well

@@ -13,8 +13,10 @@
 // painting is written by `jgpm render` (occluders/CAMERA.png: each object that hid a
 // walker, whole); a video's is given with `jgpm track --occluders PNG` per camera.
 //
-// What it assumes: a painted object is in front of everyone who passes it; a person who
-// walks in front of it loses those pixels as evidence (not charged, not needed).
+// With one person tracked, a painted object hides only a body behind it: it stands on the
+// floor, and a body nearer than its nearest foot is in front (tracker/filter/
+// occluder_layers.h). With several, it hides every body: a person who walks in front of
+// one loses those pixels as evidence (not charged, not needed).
 #pragma once
 
 #include <memory>
