@@ -80,8 +80,7 @@ CameraObservation SilhouetteLikelihood::Observe(const cv::Mat& mask, const cv::R
 }
 
 const CameraObservation& SilhouetteLikelihood::Seen(const CameraObservation& observation,
-                                                   const std::vector<Capsule>& capsules, size_t camera) const {
-  const Eigen::Vector3d feet = FloorPointUnder(capsules);
+                                                   const Eigen::Vector3d& feet, size_t camera) const {
   const std::vector<PaintedObject>& objects = observation.painted_objects();
   unsigned subset = 0;
   for (size_t j = 0; j < objects.size(); ++j)
@@ -101,9 +100,11 @@ double SilhouetteLikelihood::CostUnder(const Eigen::Vector3d* light, const std::
   JGPM_CHECK(observations.size() == renderers_.size());
   if (scores) scores->assign(renderers_.size(), CameraScore());
   double total = 0;
+  std::optional<Eigen::Vector3d> feet;  // where the body stands, once a camera has painted objects
   for (size_t c = 0; c < renderers_.size(); ++c) {
     // Painted occluders hide only a body behind them (occluder_layers.h).
-    const CameraObservation& o = observations[c].layered() ? Seen(observations[c], capsules, c) : observations[c];
+    if (observations[c].layered() && !feet) feet = FloorPointUnder(capsules);
+    const CameraObservation& o = observations[c].layered() ? Seen(observations[c], *feet, c) : observations[c];
     BitMask& canvas = w->canvas[c];
     w->outline.clear();
     renderers_[c].Draw(capsules, &canvas, &w->outline, options_.outline_step_px);

@@ -113,9 +113,9 @@ class SilhouetteLikelihood {
                    std::vector<CameraScore>* scores = nullptr) const;
 
  private:
-  // What camera `camera` shows a body drawn from `capsules`: with painted objects, the
-  // observation with only those in front of it hidden (occluder_layers.h).
-  const CameraObservation& Seen(const CameraObservation& observation, const std::vector<Capsule>& capsules,
+  // What camera `camera` shows a body standing at `feet` (FloorPointUnder): with painted
+  // objects, the observation with only those in front of it hidden (occluder_layers.h).
+  const CameraObservation& Seen(const CameraObservation& observation, const Eigen::Vector3d& feet,
                                 size_t camera) const;
 
   std::vector<BitSilhouetteRenderer> renderers_;

@@ -985,9 +985,7 @@ CameraObservation Tracker::Observe(const Frame& frame, int c, const cv::Rect& re
   }
   // The objects a body drawn near the region could be in front of, the three most in view
   // there at most (the others stay hidden for every body).
-  const int pad = static_cast<int>(std::ceil(options_.likelihood.truncation_px)) + 2;
-  const cv::Rect window = cv::Rect(region.x - pad, region.y - pad, region.width + 2 * pad, region.height + 2 * pad) &
-                          cv::Rect(0, 0, hidden.cols, hidden.rows);
+  const cv::Rect& window = observation.window();
   std::vector<std::pair<int, size_t>> near;  // (pixels in the window, object)
   for (size_t k = 0; k < objects.size(); ++k) {
     const int in_window = window.empty() ? 0 : cv::countNonZero(objects[k].pixels(window));
