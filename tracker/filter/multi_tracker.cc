@@ -15,12 +15,13 @@
 namespace jgpm {
 namespace {
 
-// What may hide a person: the others' drawings and the frame's own hidden pixels (the
-// static occluders painted for its cameras, tracker/frames/occluder_masks.h).
-std::vector<cv::Mat> WithFrameHidden(std::vector<cv::Mat> drawn, const Frame& frame) {
-  for (size_t c = 0; c < drawn.size() && c < frame.hidden.size(); ++c)
-    if (!frame.hidden[c].empty() && frame.hidden[c].size() == drawn[c].size()) drawn[c] |= frame.hidden[c];
-  return drawn;
+// A source's frame as the people see it: its hidden pixels are the static occluders
+// painted for its cameras (tracker/frames/occluder_masks.h), kept apart (Frame::painted)
+// from the others' drawings that each person's frames add as hidden.
+Frame PaintingApart(Frame frame) {
+  frame.painted = std::move(frame.hidden);
+  frame.hidden.clear();
+  return frame;
 }
 
 }  // namespace
@@ -99,7 +100,8 @@ std::vector<cv::Mat> MultiTracker::Drawn(int skip, int grow) const {
   return masks;
 }
 
-bool MultiTracker::Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks) const {
+bool MultiTracker::Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks,
+                                const std::vector<cv::Mat>& painted) const {
   for (size_t c = 0; c < cameras_.size() && c < masks.size(); ++c) {
     if (c < s.boxes.size() && !s.boxes[c].empty()) continue;
     Eigen::Vector2d feet, head;
@@ -112,7 +114,10 @@ bool MultiTracker::Contradicted(const PersonSighting& s, const std::vector<cv::M
                         static_cast<int>(tall) + 1);
     const cv::Rect image(0, 0, masks[c].cols, masks[c].rows);
     if ((body & image) != body || body.area() < 20) continue;  // not wholly in this view
-    if (20 * cv::countNonZero(masks[c](body)) < body.area()) return true;  // empty where a person would show
+    int visible = body.area();  // not behind a painted object
+    if (c < painted.size() && painted[c].size() == masks[c].size()) visible -= cv::countNonZero(painted[c](body));
+    if (2 * visible < body.area()) continue;  // mostly behind one: no say
+    if (20 * cv::countNonZero(masks[c](body)) < visible) return true;  // empty where a person would show
   }
   return false;
 }
@@ -152,9 +157,10 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
     min_px = std::max(min_px, static_cast<int>(std::lround(options_.min_birth_share * c.width * c.height)));
   std::vector<PersonSighting> sightings;
   std::vector<bool> shaped;  // PersonShaped, per sighting
-  for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true, unexplained.hidden)) {
+  for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true, Tracker::Hidden(unexplained),
+                                              unexplained.painted)) {
     const bool whole_person = PersonShaped(s);
-    if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) && !Contradicted(s, unexplained.masks)) {
+    if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) && !Contradicted(s, unexplained.masks, unexplained.painted)) {
       sightings.push_back(s);
       shaped.push_back(whole_person);
     }
@@ -324,8 +330,9 @@ void MultiTracker::GoBackOver(Person* p, const Frame& mine) const {
 
 void MultiTracker::Start(const std::vector<Frame>& frames) {
   std::vector<Frame> kept;
-  for (const Frame& f : frames) {
-    if (f.dropped) continue;
+  for (const Frame& source : frames) {
+    if (source.dropped) continue;
+    const Frame f = PaintingApart(source);
     kept.push_back(f);
     recent_.push_back(f);
     Look(f, true);
@@ -353,10 +360,13 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   };
   std::stable_sort(order.begin(), order.end(), [&](const Person* a, const Person* b) { return depth(a) < depth(b); });
   for (Person* p : order) {
-    Frame mine = frame;
+    Frame mine = PaintingApart(frame);
     if (!frame.dropped) {
-      mine.hidden = WithFrameHidden(Drawn(p->id, options_.hidden_grow_px), frame);
+      // Drawn, the others hide whatever is under them; the mask keeps what is under the
+      // painting, the evidence of someone in front of a painted object.
+      mine.hidden = Drawn(p->id, options_.hidden_grow_px);
       for (size_t c = 0; c < mine.masks.size() && c < mine.hidden.size(); ++c) {
+        if (mine.hidden[c].empty() || mine.hidden[c].size() != frame.masks[c].size()) continue;
         mine.masks[c] = frame.masks[c].clone();
         mine.masks[c].setTo(0, mine.hidden[c]);
       }
@@ -456,7 +466,8 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
       unexplained.masks.push_back(frame.masks[c].clone());
       if (c < explained.size()) unexplained.masks.back().setTo(0, explained[c]);
     }
-    unexplained.hidden = WithFrameHidden(explained, frame);  // a new person's feet may be behind someone tracked
+    unexplained.hidden = explained;  // a new person's feet may be behind someone tracked
+    unexplained.painted = frame.hidden;
     recent_.push_back(unexplained);
     while (static_cast<int>(recent_.size()) > tracker_options_.start_frames) recent_.pop_front();
     Look(recent_.back(), false);

@@ -205,7 +205,11 @@ class MultiTracker {
   // Whether a camera that did not see the sighting has it wholly in view and, where a
   // 1.7 m person standing there would show, under 5% foreground (a blob one camera places
   // far away, clutter or a shadow, that another camera would see as a person and does not).
-  bool Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks) const;
+  // The pixels of `painted` objects (per camera, may be empty) are not seen: where a
+  // painting covers half that place or more, the camera has no say (a walker wholly behind
+  // a pillar in one camera was never born from the other camera's clear view of them).
+  bool Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks,
+                    const std::vector<cv::Mat>& painted) const;
   // Whether at least half of the person's drawing is under others' in some camera.
   bool Behind(const Person& p) const;
   // Holds the frame the person was just stepped in (`mine`, as they saw it) while their

@@ -33,6 +33,12 @@
 //   charged for the top (35_12-1cam-occluders 56.8 -> 126.8). Which of the two a body is
 //   needs the table's far edge, which a painting does not give.
 //
+// Several people tracked at once: each person's frames keep the painting apart from the
+// others' drawings (Frame::painted), so each person is layered the same way (a wall painted
+// behind two walkers leaves both tracks as without it; mixed with the drawings, it hid
+// their upper bodies and moved a joint by up to 718 mm: tests/tracker/filter/
+// multi_tracker_test.cc).
+//
 // What it assumes: painted objects stand on the floor (a sign hanging from a ceiling is
 // taken to stand where its lower edge's ray meets the floor, too far: a person under it,
 // nearer, is charged for its pixels), and a body is in front of an object or behind it as

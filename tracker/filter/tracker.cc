@@ -48,6 +48,14 @@ double ShareInView(const Camera& camera, const Eigen::Matrix3Xd& joints) {
   return w > 0 && h > 0 ? w * h / ((x1 - x0) * (y1 - y0)) : 0;
 }
 
+cv::Mat CameraOf(const std::vector<cv::Mat>& masks, size_t c) { return c < masks.size() ? masks[c] : cv::Mat(); }
+
+// Pixels hidden by either (of one size; a mask of another size is not this camera's).
+cv::Mat Either(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty() || b.empty() || a.size() != b.size()) return a.empty() ? b : a;
+  return a | b;
+}
+
 }  // namespace
 
 std::string_view TrackStatusName(TrackStatus status) {
@@ -191,9 +199,9 @@ Tracker::Sightings Tracker::Locate(const Frame& frame) const {
   Sightings seen;
   seen.index = frame.index;
   seen.time_s = frame.time_s;
-  seen.may_hide = !frame.hidden.empty();
+  seen.may_hide = !frame.hidden.empty() || !frame.painted.empty();
   if (!frame.dropped)
-    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, frame.hidden, Painted(frame));
+    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, Hidden(frame), Painted(frame));
   return seen;
 }
 
@@ -521,7 +529,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   std::vector<PersonSighting> everyone;  // all the sightings it was chosen from
   const auto located = [&]() -> const PersonSighting& {
     if (!sighting)
-      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), frame.hidden,
+      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), Hidden(frame),
                               Painted(frame), &everyone);
     return *sighting;
   };
@@ -944,19 +952,20 @@ bool Tracker::ExplainsBadly(const Eigen::VectorXd& estimate, const std::vector<C
 }
 
 bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
-  if (frame.hidden.empty()) return false;
+  const std::vector<cv::Mat> hidden = Hidden(frame);
+  if (hidden.empty()) return false;
   std::vector<cv::Mat> drawn(cameras_.size());
   DrawEstimate(estimate, &drawn);
-  for (size_t c = 0; c < drawn.size() && c < frame.hidden.size(); ++c) {
-    if (drawn[c].empty() || frame.hidden[c].empty() || drawn[c].size() != frame.hidden[c].size()) continue;
+  for (size_t c = 0; c < drawn.size() && c < hidden.size(); ++c) {
+    if (drawn[c].empty() || hidden[c].empty() || drawn[c].size() != hidden[c].size()) continue;
     const int own = cv::countNonZero(drawn[c]);
-    const int under = cv::countNonZero(drawn[c] & frame.hidden[c]);
+    const int under = cv::countNonZero(drawn[c] & hidden[c]);
     // ...and under a third of it lies on empty floor (neither under them nor on the mask):
     // someone who has gone (left through a door, or never there) leaves the rest of their
     // drawing there. Counted against the whole drawing, not its rest: a prediction wholly
     // behind someone but for a sliver at the edge (14 of 610 px) is still behind them.
     const int seen = c < frame.masks.size() && frame.masks[c].size() == drawn[c].size()
-                         ? cv::countNonZero(drawn[c] & frame.masks[c] & ~frame.hidden[c])
+                         ? cv::countNonZero(drawn[c] & frame.masks[c] & ~hidden[c])
                          : 0;
     if (own > 0 && 2 * under >= own && 3 * (own - under - seen) < own) return true;
   }
@@ -967,21 +976,29 @@ double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / m
 
 const std::vector<cv::Mat>& Tracker::Painted(const Frame& frame) const {
   static const std::vector<cv::Mat> none;
+  if (!frame.painted.empty()) return frame.painted;
   return options_.hidden_is_painted ? frame.hidden : none;
+}
+
+std::vector<cv::Mat> Tracker::Hidden(const Frame& frame) {
+  if (frame.painted.empty()) return frame.hidden;
+  std::vector<cv::Mat> all(std::max(frame.hidden.size(), frame.painted.size()));
+  for (size_t c = 0; c < all.size(); ++c) all[c] = Either(CameraOf(frame.hidden, c), CameraOf(frame.painted, c));
+  return all;
 }
 
 CameraObservation Tracker::Observe(const Frame& frame, int c, const cv::Rect& region) {
   // Others' drawings are in the model's cameras already: not aligned again.
-  const cv::Mat hidden = c < static_cast<int>(frame.hidden.size()) ? frame.hidden[c] : cv::Mat();
+  const cv::Mat painting = CameraOf(Painted(frame), c);
+  const cv::Mat others = frame.painted.empty() && options_.hidden_is_painted ? cv::Mat() : CameraOf(frame.hidden, c);
   const cv::Mat mask = alignment_.Apply(c, frame.masks[c]);
-  CameraObservation observation = likelihood_.Observe(mask, region, hidden);
-  if (hidden.empty() || !options_.hidden_is_painted) return observation;
-  // A frame's painting is its own copy (others draw on theirs): split again only when it
-  // differs from the last.
-  auto& [painting, objects] = painted_objects_[c];
-  if (painting.size() != hidden.size() || cv::countNonZero(painting != hidden) > 0) {
-    painting = hidden.clone();
-    objects = SplitPainting(hidden, likelihood_.renderer(c).camera());
+  CameraObservation observation = likelihood_.Observe(mask, region, Either(others, painting));
+  if (painting.empty()) return observation;
+  // A frame's painting is its own copy: split again only when it differs from the last.
+  auto& [last, objects] = painted_objects_[c];
+  if (last.size() != painting.size() || cv::countNonZero(last != painting) > 0) {
+    last = painting.clone();
+    objects = SplitPainting(painting, likelihood_.renderer(c).camera());
   }
   // The objects a body drawn near the region could be in front of, the three most in view
   // there at most (the others stay hidden for every body).
@@ -998,10 +1015,10 @@ CameraObservation Tracker::Observe(const Frame& frame, int c, const cv::Rect& re
   for (const auto& [pixels, k] : near) chosen.push_back(objects[k]);
   std::vector<CameraObservation> by_subset;
   for (unsigned s = 0; s + 1 < (1u << chosen.size()); ++s) {
-    cv::Mat fewer = hidden.clone();
+    cv::Mat fewer = painting.clone();
     for (size_t j = 0; j < chosen.size(); ++j)
       if (!(s & (1u << j))) fewer.setTo(0, chosen[j].pixels);
-    by_subset.push_back(likelihood_.Observe(mask, region, fewer));
+    by_subset.push_back(likelihood_.Observe(mask, region, Either(others, fewer)));
   }
   observation.SetPaintedObjects(std::move(chosen), std::move(by_subset));
   return observation;

@@ -311,8 +311,9 @@ struct TrackerOptions {
   bool split_merged_starts = false;
   // Frame::hidden is the painted static occluders alone (one person tracked), which the
   // locator may also use to tell a blob in front of an object from one behind it
-  // (LocatePeople's `painted`). Several people tracked at once clear it: their hidden
-  // pixels hold the others' drawings too.
+  // (LocatePeople's `painted`) and the likelihood to place in depth. Several people
+  // tracked at once clear it: their hidden pixels are the others' drawings, and their
+  // frames give the painting apart (Frame::painted).
   bool hidden_is_painted = true;
   // Going out of sight, the particles walk on the way and at the pace the estimates went
   // (WalkOnAsSeen). Several people tracked at once clear it: hidden behind one another,
@@ -377,6 +378,9 @@ class Tracker {
   const TrackerOptions& options() const { return options_; }
   const AnnealedFilter& filter() const { return *filter_; }
   const ViewAlignment& alignment() const { return alignment_; }
+  // Every pixel that may hide a person in the frame, per camera: Frame::hidden and
+  // Frame::painted.
+  static std::vector<cv::Mat> Hidden(const Frame& frame);
   // Whether this start's leg order is as settled as it will get: its trial (legs_trial_frames)
   // decided, or no longer to be had (none tried, or the start mirror_frames +
   // legs_trial_frames frames old without one begun). StartBackOver gives a start's frames
@@ -481,8 +485,8 @@ class Tracker {
   // silhouettes to choose among (Guess, the second looks), not sightings: any two cameras'
   // blobs (another walker's, clutter's) have a place where their lines of sight meet.
   std::vector<Eigen::Vector2d> MeetingPlaces(const PersonSighting& at, const std::vector<PersonSighting>& people) const;
-  // The frame's painted occluders, when its hidden pixels are only those
-  // (TrackerOptions::hidden_is_painted); else none.
+  // The frame's painted occluders: Frame::painted when given apart, else its hidden
+  // pixels when they are only those (TrackerOptions::hidden_is_painted); else none.
   const std::vector<cv::Mat>& Painted(const Frame& frame) const;
   // Camera c's observation of the frame; with painted occluders, layered in depth
   // (occluder_layers.h), each camera's painting split once.

@@ -30,6 +30,12 @@ struct Frame {
   // being tracked are drawn. Pixels this person's likelihood neither needs explained nor
   // forbids (tracker/filter/observation.h). Sources leave it empty.
   std::vector<cv::Mat> hidden;
+  // Per camera, or none: the painted static occluders kept apart from `hidden`, which then
+  // holds only the other people's drawings (several people at once): a painted object
+  // stands somewhere and hides only who is behind it (tracker/filter/occluder_layers.h),
+  // so it must not be mixed with a drawing that hides whatever is under it. Hidden pixels
+  // are those of either.
+  std::vector<cv::Mat> painted;
 };
 
 class FrameSource {

@@ -148,6 +148,22 @@ TEST(TrackingSuite, TheCrowdSuiteHasTwoThreeAndFiveWalkersOfTheTestSplit) {
   EXPECT_TRUE(surveillance);
 }
 
+// The occluded crowd suite: each of the crowd suite's clips, the same walkers and walks
+// and render options, with static occluders painted.
+TEST(TrackingSuite, TheOccludedCrowdSuiteIsTheCrowdSuiteWithOccluders) {
+  const std::filesystem::path dir = std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts";
+  const std::vector<SuiteClip> crowd = ReadTrackingSuite(dir / "crowd_suite.txt");
+  const std::vector<SuiteClip> occluded = ReadTrackingSuite(dir / "crowd_occluded_suite.txt");
+  ASSERT_EQ(occluded.size(), crowd.size());
+  for (size_t k = 0; k < crowd.size(); ++k) {
+    EXPECT_EQ(occluded[k].name, crowd[k].name + "-occl");
+    EXPECT_EQ(occluded[k].options_text, crowd[k].options_text + " --occluders 3") << occluded[k].name;
+    EXPECT_EQ(occluded[k].options.scene.occluders, 3) << occluded[k].name;
+    EXPECT_EQ(occluded[k].trial.name, crowd[k].trial.name);
+    EXPECT_EQ(occluded[k].others.size(), crowd[k].others.size());
+  }
+}
+
 TEST(TrackingSuite, TheShippedSuiteParses) {
   const std::vector<SuiteClip> clips =
       ReadTrackingSuite(std::filesystem::path(JGPM_SOURCE_DIR) / "datasets_scripts/tracking_suite.txt");
