@@ -315,6 +315,9 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
         // feet are below it, so nearer). From a camera at head height the first alone can
         // put a person tens of metres away.
         if (head_cut) return false;
+        // Resting on something that hides the feet, a person's head and shoulders are not
+        // convex either (the neck); a clutter disc resting on a painted pillar's top is.
+        if (!edge_cut && !side_cut && Solidity(labels, l, box, area) > kMaxSolidity) return false;
         Eigen::Matrix2Xd edge(2, 1);
         edge << ends.foot_u, edge_cut ? masks[c].rows - 0.5 : ends.foot_v + 0.5;
         const Eigen::Vector3d down = cameras[c].PixelRaysInWorld(edge).col(0);

@@ -355,6 +355,37 @@ TEST(MultiTracker, AWalkerWhoLeavesEnds) {
   }
 }
 
+// The clip's observed masks of its first `cameras` cameras as frames.
+std::vector<Frame> ObservedFrames(const fs::path& clip, const ClipGroundTruth& truth, int cameras) {
+  std::vector<Frame> frames;
+  for (size_t k = 0; k < truth.frames.size(); ++k) {
+    Frame frame;
+    frame.index = static_cast<int>(k);
+    frame.time_s = truth.frames[k].time_s;
+    for (int c = 0; c < cameras; ++c) {
+      const fs::path file = clip / "observed" / ("cam" + std::to_string(c)) / ClipFrameName(frame.index);
+      frame.masks.push_back(cv::imread(file.string(), cv::IMREAD_GRAYSCALE));
+      EXPECT_FALSE(frame.masks.back().empty()) << file;
+    }
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+// Several people tracked through `frames` as RunTrackJob tracks them (started on the first
+// start_frames), each frame's people with the estimates from before confirmation placed.
+std::vector<PeopleFrame> TrackPeople(const GaitModel& model, const std::vector<Camera>& cameras,
+                                     const TrackJobOptions& job, const std::vector<Frame>& frames) {
+  MultiTracker tracker(model, cameras, job.tracker, job.multi);
+  tracker.Start({frames.begin(), frames.begin() + job.tracker.start_frames});
+  std::vector<PeopleFrame> out;
+  for (const Frame& f : frames) {
+    out.push_back(tracker.Step(f));
+    PlaceEarlier(&out);
+  }
+  return out;
+}
+
 // Two walkers apart through one camera at head height, their shins and below hidden in
 // the first 16 frames (as behind a low wall): depth is read from where the feet are, so
 // each birth is placed from the heads alone until the feet show. Each birth's first second
@@ -366,40 +397,25 @@ TEST(MultiTracker, ABirthsFirstSecondIsGoneBackOver) {
   const fs::path clip = Render({Walker("07_01", {true, -1200, -1500, 0, 0}, 0), Walker("35_10", {true, 1200, 1000, 0, 0}, 3)},
                                dir.path() / "apart", 1, 50, {}, {SideCamera(0, 8000)});
   const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
-  std::vector<Frame> frames;
-  for (size_t k = 0; k < truth.frames.size(); ++k) {
-    Frame frame;
-    frame.index = static_cast<int>(k);
-    frame.time_s = truth.frames[k].time_s;
-    cv::Mat mask = cv::imread((clip / "observed" / "cam0" / ClipFrameName(frame.index)).string(), cv::IMREAD_GRAYSCALE);
-    ASSERT_FALSE(mask.empty());
-    if (k <= 15) {
-      cv::Mat hidden = cv::Mat::zeros(mask.size(), CV_8UC1), labels, stats, centroids;
-      const int n = cv::connectedComponentsWithStats(mask > 0, labels, stats, centroids);
-      for (int b = 1; b < n; ++b) {
-        if (stats.at<int>(b, cv::CC_STAT_AREA) < 100) continue;
-        const int x = stats.at<int>(b, cv::CC_STAT_LEFT), y = stats.at<int>(b, cv::CC_STAT_TOP);
-        const int w = stats.at<int>(b, cv::CC_STAT_WIDTH), h = stats.at<int>(b, cv::CC_STAT_HEIGHT);
-        hidden(cv::Rect(x - 4, y + h * 3 / 4, w + 8, h / 4 + 4) & cv::Rect(0, 0, mask.cols, mask.rows)).setTo(255);
-      }
-      mask.setTo(0, hidden);
-      frame.hidden.push_back(hidden);
+  std::vector<Frame> frames = ObservedFrames(clip, truth, 1);
+  for (size_t k = 0; k <= 15; ++k) {
+    cv::Mat& mask = frames[k].masks[0];
+    cv::Mat hidden = cv::Mat::zeros(mask.size(), CV_8UC1), labels, stats, centroids;
+    const int n = cv::connectedComponentsWithStats(mask > 0, labels, stats, centroids);
+    for (int b = 1; b < n; ++b) {
+      if (stats.at<int>(b, cv::CC_STAT_AREA) < 100) continue;
+      const int x = stats.at<int>(b, cv::CC_STAT_LEFT), y = stats.at<int>(b, cv::CC_STAT_TOP);
+      const int w = stats.at<int>(b, cv::CC_STAT_WIDTH), h = stats.at<int>(b, cv::CC_STAT_HEIGHT);
+      hidden(cv::Rect(x - 4, y + h * 3 / 4, w + 8, h / 4 + 4) & cv::Rect(0, 0, mask.cols, mask.rows)).setTo(255);
     }
-    frame.masks.push_back(mask);
-    frames.push_back(std::move(frame));
+    mask.setTo(0, hidden);
+    frames[k].hidden.push_back(hidden);
   }
   const std::unique_ptr<GaitModel> model = ReadModelFile(Shared().model);
   const auto track = [&](double back_s) {
     TrackJobOptions job = Job(clip);
     job.tracker.start_backwards_s = back_s;
-    MultiTracker tracker(*model, truth.cameras, job.tracker, job.multi);
-    tracker.Start({frames.begin(), frames.begin() + job.tracker.start_frames});
-    std::vector<PeopleFrame> out;
-    for (const Frame& f : frames) {
-      out.push_back(tracker.Step(f));
-      PlaceEarlier(&out);
-    }
-    return out;
+    return TrackPeople(*model, truth.cameras, job, frames);
   };
   const std::vector<PeopleFrame> forwards = track(0), back = track(1.0);
   ASSERT_EQ(forwards.size(), back.size());
@@ -441,7 +457,8 @@ TEST(MultiTracker, ABirthsFirstSecondIsGoneBackOver) {
               error[0][0], error[0][1], error[1][0], error[1][1], count[1][0], count[1][1], changed);
   EXPECT_GE(same, 16);      // two people's last 10 frames, less a late confirmation
   EXPECT_GT(changed, 10);   // the second passes were kept
-  // Measured: 112 mm forwards, 76 gone back over; after, 30 either way.
+  // Measured (6 Dec): 90 mm forwards, 43 gone back over; after, 32 either way (3 Dec, with
+  // the hidden pixels not yet kept apart as a painting: 112, 76 and 30).
   EXPECT_LT(error[1][0], 0.8 * error[0][0]);
 }
 
@@ -456,17 +473,12 @@ TEST(MultiTracker, AnObjectPaintedBehindTheWalkersChangesNothing) {
   const fs::path clip = Render({Walker("07_01", {true, -1200, -1500, 0, 0}, 0), Walker("35_10", {true, 1200, 1000, 0, 0}, 3)},
                                dir.path() / "apart", 1, 40, {}, {SideCamera(0, 8000)});
   const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
-  std::vector<Frame> frames;
+  const std::vector<Frame> frames = ObservedFrames(clip, truth, 1);
   cv::Rect walked;
   int farthest_feet = 240;  // the highest row any walker's feet reach
-  for (size_t k = 0; k < truth.frames.size(); ++k) {
-    Frame frame;
-    frame.index = static_cast<int>(k);
-    frame.time_s = truth.frames[k].time_s;
-    const cv::Mat mask = cv::imread((clip / "observed" / "cam0" / ClipFrameName(frame.index)).string(), cv::IMREAD_GRAYSCALE);
-    ASSERT_FALSE(mask.empty());
+  for (const Frame& frame : frames) {
     cv::Mat labels, stats, centroids;
-    const int n = cv::connectedComponentsWithStats(mask > 0, labels, stats, centroids);
+    const int n = cv::connectedComponentsWithStats(frame.masks[0] > 0, labels, stats, centroids);
     for (int b = 1; b < n; ++b) {
       if (stats.at<int>(b, cv::CC_STAT_AREA) < 100) continue;
       const cv::Rect blob(stats.at<int>(b, cv::CC_STAT_LEFT), stats.at<int>(b, cv::CC_STAT_TOP),
@@ -474,8 +486,6 @@ TEST(MultiTracker, AnObjectPaintedBehindTheWalkersChangesNothing) {
       walked |= blob;
       farthest_feet = std::min(farthest_feet, blob.y + blob.height);
     }
-    frame.masks.push_back(mask);
-    frames.push_back(std::move(frame));
   }
   cv::Mat painting = cv::Mat::zeros(240, 320, CV_8UC1);
   painting(cv::Rect(walked.x, 0, walked.width, farthest_feet - 30)).setTo(255);
@@ -484,18 +494,10 @@ TEST(MultiTracker, AnObjectPaintedBehindTheWalkersChangesNothing) {
   ASSERT_GT(over, 30) << "the painting must lie under someone";
   const std::unique_ptr<GaitModel> model = ReadModelFile(Shared().model);
   const auto track = [&](bool painted) {
-    const TrackJobOptions job = Job(clip);
-    MultiTracker tracker(*model, truth.cameras, job.tracker, job.multi);
     std::vector<Frame> seen = frames;
     if (painted)
       for (Frame& f : seen) f.hidden = {painting.clone()};
-    tracker.Start({seen.begin(), seen.begin() + job.tracker.start_frames});
-    std::vector<PeopleFrame> out;
-    for (const Frame& f : seen) {
-      out.push_back(tracker.Step(f));
-      PlaceEarlier(&out);
-    }
-    return out;
+    return TrackPeople(*model, truth.cameras, Job(clip), seen);
   };
   const std::vector<PeopleFrame> plain = track(false), painted = track(true);
   ASSERT_EQ(plain.size(), painted.size());
@@ -525,20 +527,9 @@ TEST(MultiTracker, AWalkerBehindAPaintedPillarInOneCameraIsBornFromTheOther) {
   test::TempDir dir;
   const fs::path clip = Render({Walker("07_01", {true, 0, 0, 0, 0}, 0)}, dir.path() / "behind", 2, 40);
   const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
-  std::vector<Frame> frames;
+  std::vector<Frame> frames = ObservedFrames(clip, truth, 2);
   cv::Rect path;  // the walker's pixels in the first camera, over the clip
-  for (size_t k = 0; k < truth.frames.size(); ++k) {
-    Frame frame;
-    frame.index = static_cast<int>(k);
-    frame.time_s = truth.frames[k].time_s;
-    for (int c = 0; c < 2; ++c) {
-      const std::string cam = "cam" + std::to_string(c);
-      frame.masks.push_back(cv::imread((clip / "observed" / cam / ClipFrameName(frame.index)).string(), cv::IMREAD_GRAYSCALE));
-      ASSERT_FALSE(frame.masks.back().empty());
-    }
-    path |= cv::boundingRect(frame.masks[0]);
-    frames.push_back(std::move(frame));
-  }
+  for (const Frame& f : frames) path |= cv::boundingRect(f.masks[0]);
   const cv::Rect image(0, 0, frames[0].masks[0].cols, frames[0].masks[0].rows);
   cv::Mat pillar = cv::Mat::zeros(image.size(), CV_8UC1);
   pillar(cv::Rect(path.x - 6, path.y - 6, path.width + 12, path.height + 12) & image).setTo(255);
@@ -547,14 +538,7 @@ TEST(MultiTracker, AWalkerBehindAPaintedPillarInOneCameraIsBornFromTheOther) {
     f.hidden = {pillar, cv::Mat()};
   }
   const std::unique_ptr<GaitModel> model = ReadModelFile(Shared().model);
-  const TrackJobOptions job = Job(clip);
-  MultiTracker tracker(*model, truth.cameras, job.tracker, job.multi);
-  tracker.Start({frames.begin(), frames.begin() + job.tracker.start_frames});
-  std::vector<PeopleFrame> out;
-  for (const Frame& f : frames) {
-    out.push_back(tracker.Step(f));
-    PlaceEarlier(&out);
-  }
+  const std::vector<PeopleFrame> out = TrackPeople(*model, truth.cameras, Job(clip), frames);
   int near = 0;  // frames with someone within 500 mm of the walker on the floor
   for (size_t k = 0; k < out.size(); ++k) {
     const Eigen::Vector2d walker(truth.frames[k].joints_mm(0, 0), truth.frames[k].joints_mm(2, 0));

@@ -258,24 +258,32 @@ TEST(PersonLocator, AConvexBlobIsNotAPerson) {
 // object is above the blob's top too: a pillar as tall as the image with a clutter blob
 // passing in front of it, at head height, hides nothing of the blob, so the blob is in
 // front of it and nobody (in the air). A table below the blob's top still hides the feet
-// of whoever rests on it (FeetHiddenByATableAreBetweenItsEdges), and so does a drawing
-// of someone tracked (hidden, not painted: an estimate a few pixels off).
+// of a head and shoulders resting on it (FeetHiddenByATableAreBetweenItsEdges), and so
+// does a drawing of someone tracked (hidden, not painted: an estimate a few pixels off).
+// A disc resting on either is nobody: a head and shoulders are not convex (the neck).
 TEST(PersonLocator, ABlobInFrontOfAPaintedPillarIsNotBehindIt) {
   const Camera camera = LookAtCamera("cam0", 320, 240, 260, {0, 1500, -5000}, {0, 1000, 0});
   cv::Mat pillar(240, 320, CV_8UC1, cv::Scalar(0));
   pillar(cv::Rect(120, 0, 80, 240)).setTo(255);
-  cv::Mat blob(240, 320, CV_8UC1, cv::Scalar(0));
-  cv::circle(blob, cv::Point(160, 100), 16, 255, cv::FILLED);
-  EXPECT_TRUE(LocatePeople({camera}, {blob}, 60, true, {pillar}, {pillar}).empty());
-  const std::vector<PersonSighting> drawn = LocatePeople({camera}, {blob}, 60, true, {pillar});
+  // Rows 84-116 (0.6 m at 5 m): a head of 12 px radius over shoulders 40 px wide.
+  cv::Mat bust(240, 320, CV_8UC1, cv::Scalar(0)), disc = bust.clone();
+  cv::circle(bust, cv::Point(160, 96), 12, 255, cv::FILLED);
+  bust(cv::Rect(156, 106, 8, 2)).setTo(255);   // the neck
+  bust(cv::Rect(140, 108, 40, 9)).setTo(255);  // the shoulders
+  cv::circle(disc, cv::Point(160, 100), 16, 255, cv::FILLED);
+  EXPECT_TRUE(LocatePeople({camera}, {bust}, 60, true, {pillar}, {pillar}).empty());
+  const std::vector<PersonSighting> drawn = LocatePeople({camera}, {bust}, 60, true, {pillar});
   ASSERT_EQ(drawn.size(), 1u);
   EXPECT_FALSE(drawn[0].feet_seen);
-  // The same blob on a table-high painting, clear of its top, is a head behind it.
+  EXPECT_TRUE(LocatePeople({camera}, {disc}, 60, true, {pillar}).empty());
+  // The same blobs on a table-high painting, clear of its top: a head behind it, and
+  // still nobody.
   cv::Mat table = pillar.clone();
   table(cv::Rect(120, 0, 80, 117)).setTo(0);
-  const std::vector<PersonSighting> behind = LocatePeople({camera}, {blob}, 60, true, {table}, {table});
+  const std::vector<PersonSighting> behind = LocatePeople({camera}, {bust}, 60, true, {table}, {table});
   ASSERT_EQ(behind.size(), 1u);
   EXPECT_FALSE(behind[0].feet_seen);
+  EXPECT_TRUE(LocatePeople({camera}, {disc}, 60, true, {table}, {table}).empty());
 }
 
 // A shadow on the floor from the feet, cast sideways (across the side camera's line of
