@@ -160,7 +160,8 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
   for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true, Tracker::Hidden(unexplained),
                                               unexplained.painted)) {
     const bool whole_person = PersonShaped(s);
-    if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) && !Contradicted(s, unexplained.masks, unexplained.painted)) {
+    if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) &&
+        !Contradicted(s, unexplained.masks, unexplained.painted)) {
       sightings.push_back(s);
       shaped.push_back(whole_person);
     }

@@ -30,9 +30,9 @@
 // than 0.7 of the height, or filling more than 0.96 of its convex hull, as a ball, a cart
 // or a clutter blob is, the last also when something hides its feet, as a clutter disc
 // resting on a painted pillar's top; a blob with a painted object above its top as well
-// as below is in front of it, not behind it) are passed over; with several cameras the place that most
-// cameras' blobs agree on (within 1 m) is taken, and the answer is the median of those
-// blobs.
+// as below is in front of it, not behind it) are passed over; with several cameras the
+// place that most cameras' blobs agree on (within 1 m) is taken, and the answer is the
+// median of those blobs.
 // Several people: the same, again and again, over the blobs not yet taken, so each blob is
 // one person's; the caller chooses among them (the strongest, the nearest to a place where
 // a tracked person is expected, or to a pixel a user pointed at).
