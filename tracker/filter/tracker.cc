@@ -50,12 +50,6 @@ double ShareInView(const Camera& camera, const Eigen::Matrix3Xd& joints) {
 
 cv::Mat CameraOf(const std::vector<cv::Mat>& masks, size_t c) { return c < masks.size() ? masks[c] : cv::Mat(); }
 
-// Pixels hidden by either (of one size; a mask of another size is not this camera's).
-cv::Mat Either(const cv::Mat& a, const cv::Mat& b) {
-  if (a.empty() || b.empty() || a.size() != b.size()) return a.empty() ? b : a;
-  return a | b;
-}
-
 }  // namespace
 
 std::string_view TrackStatusName(TrackStatus status) {
@@ -201,7 +195,7 @@ Tracker::Sightings Tracker::Locate(const Frame& frame) const {
   seen.time_s = frame.time_s;
   seen.may_hide = !frame.hidden.empty() || !frame.painted.empty();
   if (!frame.dropped)
-    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, Hidden(frame), Painted(frame));
+    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, HiddenPixels(frame), Painted(frame));
   return seen;
 }
 
@@ -529,7 +523,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   std::vector<PersonSighting> everyone;  // all the sightings it was chosen from
   const auto located = [&]() -> const PersonSighting& {
     if (!sighting)
-      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), Hidden(frame),
+      sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), HiddenPixels(frame),
                               Painted(frame), &everyone);
     return *sighting;
   };
@@ -952,7 +946,7 @@ bool Tracker::ExplainsBadly(const Eigen::VectorXd& estimate, const std::vector<C
 }
 
 bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
-  const std::vector<cv::Mat> hidden = Hidden(frame);
+  const std::vector<cv::Mat> hidden = HiddenPixels(frame);
   if (hidden.empty()) return false;
   std::vector<cv::Mat> drawn(cameras_.size());
   DrawEstimate(estimate, &drawn);
@@ -980,19 +974,12 @@ const std::vector<cv::Mat>& Tracker::Painted(const Frame& frame) const {
   return options_.hidden_is_painted ? frame.hidden : none;
 }
 
-std::vector<cv::Mat> Tracker::Hidden(const Frame& frame) {
-  if (frame.painted.empty()) return frame.hidden;
-  std::vector<cv::Mat> all(std::max(frame.hidden.size(), frame.painted.size()));
-  for (size_t c = 0; c < all.size(); ++c) all[c] = Either(CameraOf(frame.hidden, c), CameraOf(frame.painted, c));
-  return all;
-}
-
 CameraObservation Tracker::Observe(const Frame& frame, int c, const cv::Rect& region) {
   // Others' drawings are in the model's cameras already: not aligned again.
   const cv::Mat painting = CameraOf(Painted(frame), c);
   const cv::Mat others = frame.painted.empty() && options_.hidden_is_painted ? cv::Mat() : CameraOf(frame.hidden, c);
   const cv::Mat mask = alignment_.Apply(c, frame.masks[c]);
-  CameraObservation observation = likelihood_.Observe(mask, region, Either(others, painting));
+  CameraObservation observation = likelihood_.Observe(mask, region, EitherHidden(others, painting));
   if (painting.empty()) return observation;
   // A frame's painting is its own copy: split again only when it differs from the last.
   auto& [last, objects] = painted_objects_[c];
@@ -1018,7 +1005,7 @@ CameraObservation Tracker::Observe(const Frame& frame, int c, const cv::Rect& re
     cv::Mat fewer = painting.clone();
     for (size_t j = 0; j < chosen.size(); ++j)
       if (!(s & (1u << j))) fewer.setTo(0, chosen[j].pixels);
-    by_subset.push_back(likelihood_.Observe(mask, region, Either(others, fewer)));
+    by_subset.push_back(likelihood_.Observe(mask, region, EitherHidden(others, fewer)));
   }
   observation.SetPaintedObjects(std::move(chosen), std::move(by_subset));
   return observation;

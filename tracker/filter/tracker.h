@@ -378,9 +378,6 @@ class Tracker {
   const TrackerOptions& options() const { return options_; }
   const AnnealedFilter& filter() const { return *filter_; }
   const ViewAlignment& alignment() const { return alignment_; }
-  // Every pixel that may hide a person in the frame, per camera: Frame::hidden and
-  // Frame::painted.
-  static std::vector<cv::Mat> Hidden(const Frame& frame);
   // Whether this start's leg order is as settled as it will get: its trial (legs_trial_frames)
   // decided, or no longer to be had (none tried, or the start mirror_frames +
   // legs_trial_frames frames old without one begun). StartBackOver gives a start's frames

@@ -6,6 +6,7 @@
 // and background subtraction).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -34,9 +35,27 @@ struct Frame {
   // holds only the other people's drawings (several people at once): a painted object
   // stands somewhere and hides only who is behind it (tracker/filter/occluder_layers.h),
   // so it must not be mixed with a drawing that hides whatever is under it. Hidden pixels
-  // are those of either.
+  // are those of either (HiddenPixels).
   std::vector<cv::Mat> painted;
 };
+
+// Pixels hidden by either mask: their union, or the one given when the other is empty or
+// of another size (not the same camera's).
+inline cv::Mat EitherHidden(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty() || b.empty() || a.size() != b.size()) return a.empty() ? b : a;
+  return a | b;
+}
+
+// Every pixel that may hide a person in `frame`, per camera: Frame::hidden and
+// Frame::painted.
+inline std::vector<cv::Mat> HiddenPixels(const Frame& frame) {
+  if (frame.painted.empty()) return frame.hidden;
+  std::vector<cv::Mat> all(std::max(frame.hidden.size(), frame.painted.size()));
+  for (size_t c = 0; c < all.size(); ++c)
+    all[c] = EitherHidden(c < frame.hidden.size() ? frame.hidden[c] : cv::Mat(),
+                          c < frame.painted.size() ? frame.painted[c] : cv::Mat());
+  return all;
+}
 
 class FrameSource {
  public:
