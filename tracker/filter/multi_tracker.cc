@@ -40,6 +40,7 @@ bool MultiTrackerOptions::Check(std::string* why) const {
   if (confirm_frames < 1 || confirm_frames > birth_window || !(confirm_iou >= 0 && confirm_iou <= 1) || hidden_grow_px < 0)
     return fail("frame counts: expected positive");
   if (!(death_s > 0 && duplicate_s > 0 && duplicate_same_way_s > 0)) return fail("death and duplicate times: expected positive");
+  if (!(max_stature_mm > 0)) return fail("max stature: expected a positive height in mm");
   return true;
 }
 
@@ -52,6 +53,8 @@ struct MultiTracker::Person {
   std::vector<cv::Mat> drawn;  // the last estimate in each camera (empty: not drawn)
   double lost_s = 0;    // time in a row lost
   double unseen_s = 0;  // and not tracked (predicted or lost) with nobody in front
+  bool giant = false;   // the last estimate stands taller than max_stature_mm
+  double giant_s = 0;   // and time in a row so
   int stepped = 0;     // frames stepped
   int good = 0;        // of them, tracked at confirm_iou or more
   bool confirmed = false;
@@ -375,7 +378,8 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     p->last = p->tracker->Step(mine);
     p->has_estimate = p->last.state.size() > 0;
     ++p->stepped;
-    if (p->last.status == TrackStatus::kTracked && p->last.MeanIou() >= options_.confirm_iou) ++p->good;
+    p->giant = p->has_estimate && p->tracker->StatureMm(p->last) > options_.max_stature_mm;
+    if (p->last.status == TrackStatus::kTracked && p->last.MeanIou() >= options_.confirm_iou && !p->giant) ++p->good;
     p->confirmed = p->confirmed || p->good >= options_.confirm_frames;
     p->drawn.assign(cameras_.size(), cv::Mat());
     p->tracker->DrawEstimate(p->last, &p->drawn);
@@ -397,7 +401,9 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   for (Person* p : order) {
     p->lost_s = p->last.status == TrackStatus::kLost ? p->lost_s + dt : 0;
     p->unseen_s = p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p) ? 0 : p->unseen_s + dt;
+    p->giant_s = p->giant ? p->giant_s + dt : 0;
     if (p->lost_s >= options_.death_s - tolerance || p->unseen_s >= options_.death_s - tolerance ||
+        p->giant_s >= options_.death_s - tolerance ||
         (!p->confirmed && p->stepped >= options_.birth_window))
       ending.push_back(p->id);
   }

@@ -44,10 +44,16 @@
 // for death_s in a row ends: a single tracker keeps a person it cannot see
 // predicted for up to two seconds, taking them for hidden, but among several people
 // tracked the ones who could hide them are known (and each tracker, told where the others
-// are drawn, predicts its person while behind them rather than drop them: tracker.h). Two people within duplicate_mm of each other on the floor for
-// duplicate_s in a row (a second: people crossing share a place for a third of one), or
-// duplicate_same_way_s walking the same way, are one person followed twice
-// (two bodies do not stand in one place): the one born later ends.
+// are drawn, predicts its person while behind them rather than drop them: tracker.h). A
+// person standing taller than max_stature_mm for death_s in a row ends: what only a giant
+// explains is not a person (a clutter blob drifting over a plaza's far side was followed
+// 11 m away as a body 2.5 m tall, and a man at a car's open boot at vtest.avi's edge, legs
+// hidden, 56 m away as one 2.24 m tall: the silhouette fit grows a body to its bounds,
+// 2.3-2.5 m, and holds it there);
+// such a frame does not count towards confirmation either. Two people within duplicate_mm
+// of each other on the floor for duplicate_s in a row (a second: people crossing share a
+// place for a third of one), or duplicate_same_way_s walking the same way, are one person
+// followed twice (two bodies do not stand in one place): the one born later ends.
 //
 // A birth's start is gone over backwards, as a single tracker's is (tracker.h,
 // TrackerOptions::start_backwards_s): start_backwards_s after the first frame a person was
@@ -72,6 +78,10 @@
 // about 600 px of 640x480, half of that, as a share so that it holds at any working size.
 // death_s: half a second, the time for a tracker to find a person again after a short
 // occlusion (tracker.h keeps a hidden person predicted meanwhile).
+// max_stature_mm: the tallest adult (kMaxAdultMm, 2.05 m: the mean and 3.5 standard
+// deviations) read 7% tall, the most a fitted body's height has been off for a real walker
+// (one elevated camera, a coat and a shadow: walkers of 1.6-1.8 m read up to 2.18 m in the
+// plaza clips; vtest.avi's walkers, at most 1.9 m).
 #pragma once
 
 #include <deque>
@@ -105,6 +115,7 @@ struct MultiTrackerOptions {
   // as briefly as 30 frames/s does (15 frames were 1.5 s of a body walking on in vtest.avi's
   // plaza, where the person was not); runs are counted in frame intervals, to half a frame.
   double death_s = 0.5;
+  double max_stature_mm = 2200;  // ...or as long taller than this (Death, above)
   double duplicate_mm = 400;
   double duplicate_s = 1;                 // ...or this long when they walk the same way
   double duplicate_same_way_s = 1.0 / 3;  // (heading within duplicate_heading_deg)

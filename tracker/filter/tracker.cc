@@ -162,7 +162,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
     refiner_ = std::make_unique<PoseRefiner>(model, likelihood_, body_, refinement, &pool_);
   }
   // The model's height at size 1, over poses spread by the prior.
-  const int head = model.skeleton().FindBone("head");
+  head_ = model.skeleton().FindBone("head");
   Eigen::VectorXd state(state_model_->Dimension());
   Eigen::Matrix3Xd joints;
   InitialGuess origin;
@@ -173,7 +173,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
     Random random(12345, i);
     state_model_->Sample(origin, &random, state.data());
     state_model_->Evaluate(state.data(), &joints);
-    sum += (head >= 0 ? joints(1, head) : joints.row(1).maxCoeff()) + kHeadTopMm;
+    sum += (head_ >= 0 ? joints(1, head_) : joints.row(1).maxCoeff()) + kHeadTopMm;
   }
   model_height_mm_ = sum / 64;
 }
@@ -964,6 +964,13 @@ bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
     if (own > 0 && 2 * under >= own && 3 * (own - under - seen) < own) return true;
   }
   return false;
+}
+
+double Tracker::StatureMm(const TrackedFrame& estimate) const {
+  const Eigen::Matrix3Xd& joints = estimate.joints_mm;
+  if (joints.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
+  const double top = head_ >= 0 && head_ < joints.cols() ? joints(1, head_) : joints.row(1).maxCoeff();
+  return top + kHeadTopMm * estimate.size - estimate.build.floor_mm;
 }
 
 double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / model_height_mm_, 0.8, 1.25); }

@@ -440,6 +440,9 @@ class Tracker {
   bool Guess(const std::vector<Frame>& frames, InitialGuess* guess, const PersonPreference& prefer = {},
              std::vector<cv::Rect>* boxes = nullptr, bool at_last = false) const;
 
+  // How tall the estimate's body stands: its head's top above its floor (mm).
+  double StatureMm(const TrackedFrame& estimate) const;
+
  private:
   // The people one frame's masks show (LocatePeople; none when dropped), with its time.
   struct Sightings {
@@ -567,6 +570,7 @@ class Tracker {
   ShadowLight shadow_light_;    // the light casting the shadow the masks hold
   int shadow_light_frame_ = -1;
   double model_height_mm_ = 0;  // floor to top of head at size 1
+  int head_ = -1;                // the skeleton's head bone (-1: none; its highest bone end)
   // The other leg order's trial (TryOtherLegs): due once per start, the second tracker
   // while it runs, and both orders' costs summed over its frames so far.
   bool tries_other_legs_ = true;  // false for followers
