@@ -125,13 +125,14 @@ bool MultiTracker::Contradicted(const PersonSighting& s, const std::vector<cv::M
   return false;
 }
 
-bool MultiTracker::Behind(const Person& p) const {
+bool MultiTracker::Behind(const Person& p, const std::vector<cv::Mat>& painted) const {
   if (p.drawn.empty()) return false;
-  const std::vector<cv::Mat> others = Drawn(p.id, 0);
+  std::vector<cv::Mat> covers = Drawn(p.id, 0);
   for (size_t c = 0; c < cameras_.size() && c < p.drawn.size(); ++c) {
     if (p.drawn[c].empty()) continue;
+    if (c < painted.size() && painted[c].size() == covers[c].size()) covers[c] |= painted[c];
     const int own = cv::countNonZero(p.drawn[c]);
-    if (own > 0 && 2 * cv::countNonZero(p.drawn[c] & others[c]) >= own) return true;
+    if (own > 0 && 2 * cv::countNonZero(p.drawn[c] & covers[c]) >= own) return true;
   }
   return false;
 }
@@ -400,7 +401,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   std::vector<int> ending;
   for (Person* p : order) {
     p->lost_s = p->last.status == TrackStatus::kLost ? p->lost_s + dt : 0;
-    p->unseen_s = p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p) ? 0 : p->unseen_s + dt;
+    p->unseen_s = p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p, frame.hidden) ? 0 : p->unseen_s + dt;
     p->giant_s = p->giant ? p->giant_s + dt : 0;
     if (p->lost_s >= options_.death_s - tolerance || p->unseen_s >= options_.death_s - tolerance ||
         p->giant_s >= options_.death_s - tolerance ||

@@ -40,7 +40,8 @@
 // the best body; walkers are explained at 0.4-0.7) and ends unreported.
 //
 // Death. A person lost (tracker.h: explained badly, or out of every view), or not tracked
-// while nobody stands in front of them (half their drawing under others' in some camera),
+// while nobody and nothing stands in front of them (half their drawing under others' or
+// under a painted object in some camera),
 // for death_s in a row ends: a single tracker keeps a person it cannot see
 // predicted for up to two seconds, taking them for hidden, but among several people
 // tracked the ones who could hide them are known (and each tracker, told where the others
@@ -221,8 +222,9 @@ class MultiTracker {
   // a pillar in one camera was never born from the other camera's clear view of them).
   bool Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks,
                     const std::vector<cv::Mat>& painted) const;
-  // Whether at least half of the person's drawing is under others' in some camera.
-  bool Behind(const Person& p) const;
+  // Whether at least half of the person's drawing is under others' or under the `painted`
+  // objects (per camera, may be empty) in some camera.
+  bool Behind(const Person& p, const std::vector<cv::Mat>& painted) const;
   // Holds the frame the person was just stepped in (`mine`, as they saw it) while their
   // birth's start is not gone back over; once start_backwards_s has passed, goes back over
   // it (Tracker::BackOver) and keeps the second pass's estimates in p->revised.
