@@ -137,6 +137,22 @@ bool MultiTracker::Behind(const Person& p, const std::vector<cv::Mat>& painted) 
   return false;
 }
 
+double MultiTracker::ConfirmIou(const Person& p, const std::vector<cv::Mat>& painted) const {
+  double sum = 0;
+  int counted = 0;
+  for (size_t c = 0; c < p.last.cameras.size(); ++c) {
+    const CameraScore& score = p.last.cameras[c];
+    if (score.observed_px == 0 && score.model_px == 0) continue;  // no evidence (MeanIou)
+    if (c < p.drawn.size() && c < painted.size() && !p.drawn[c].empty() && painted[c].size() == p.drawn[c].size()) {
+      const int own = cv::countNonZero(p.drawn[c]);
+      if (own > 0 && 2 * cv::countNonZero(p.drawn[c] & painted[c]) >= own) continue;  // behind the painting
+    }
+    sum += score.Iou();
+    ++counted;
+  }
+  return counted > 0 ? sum / counted : p.last.MeanIou();
+}
+
 bool MultiTracker::PersonShaped(const PersonSighting& s) const {
   if (s.height_mm <= 0) return false;  // feet or head unseen
   for (size_t c = 0; c < s.boxes.size() && c < s.areas.size(); ++c) {
@@ -379,11 +395,12 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     p->last = p->tracker->Step(mine);
     p->has_estimate = p->last.state.size() > 0;
     ++p->stepped;
-    p->giant = p->has_estimate && p->tracker->StatureMm(p->last) > options_.max_stature_mm;
-    if (p->last.status == TrackStatus::kTracked && p->last.MeanIou() >= options_.confirm_iou && !p->giant) ++p->good;
-    p->confirmed = p->confirmed || p->good >= options_.confirm_frames;
     p->drawn.assign(cameras_.size(), cv::Mat());
     p->tracker->DrawEstimate(p->last, &p->drawn);
+    p->giant = p->has_estimate && p->tracker->StatureMm(p->last) > options_.max_stature_mm;
+    if (p->last.status == TrackStatus::kTracked && ConfirmIou(*p, frame.hidden) >= options_.confirm_iou && !p->giant)
+      ++p->good;
+    p->confirmed = p->confirmed || p->good >= options_.confirm_frames;
     GoBackOver(p, mine);
     if (!shadow_light_ && p->tracker->shadow_light().light()) {
       shadow_light_ = p->tracker->shadow_light();

@@ -34,7 +34,10 @@
 // air or a flicker seen in a frame or two does not start anyone.
 //
 // Confirmation. A new person is reported once confirm_frames of their first birth_window
-// frames are tracked with a mean IoU of confirm_iou or more; one who is not by then was
+// frames are tracked with a mean IoU of confirm_iou or more (over the cameras in which
+// they do not stand behind a painted object: a walker wholly behind a pillar in one
+// camera, explained at 0.5 in the other, was held back for 15 frames by the first
+// camera's 0); one who is not by then was
 // something else (a blob one camera places far away, which no body explains: clutter
 // crossing a webcam's view was started as a person 9 m away and explained at IoU 0.2 by
 // the best body; walkers are explained at 0.4-0.7) and ends unreported.
@@ -222,6 +225,10 @@ class MultiTracker {
   // a pillar in one camera was never born from the other camera's clear view of them).
   bool Contradicted(const PersonSighting& s, const std::vector<cv::Mat>& masks,
                     const std::vector<cv::Mat>& painted) const;
+  // The person's last estimate's mean IoU (TrackedFrame::MeanIou) over the cameras in which
+  // at most half of their drawing is under the `painted` objects (per camera, may be
+  // empty); over all of them when there are none such.
+  double ConfirmIou(const Person& p, const std::vector<cv::Mat>& painted) const;
   // Whether at least half of the person's drawing is under others' or under the `painted`
   // objects (per camera, may be empty) in some camera.
   bool Behind(const Person& p, const std::vector<cv::Mat>& painted) const;

@@ -518,39 +518,70 @@ TEST(MultiTracker, AnObjectPaintedBehindTheWalkersChangesNothing) {
   EXPECT_EQ(most, 0.0) << "the painting moved a joint by up to " << most << " mm";
 }
 
+// Paints a pillar over all of the walker's pixels in the first camera of `frames` (left
+// out of its masks, as a pillar in front would leave them).
+void PaintPillarInFirstCamera(std::vector<Frame>* frames) {
+  cv::Rect path;  // the walker's pixels in the first camera, over the clip
+  for (const Frame& f : *frames) path |= cv::boundingRect(f.masks[0]);
+  const cv::Rect image(0, 0, (*frames)[0].masks[0].cols, (*frames)[0].masks[0].rows);
+  cv::Mat pillar = cv::Mat::zeros(image.size(), CV_8UC1);
+  pillar(cv::Rect(path.x - 6, path.y - 6, path.width + 12, path.height + 12) & image).setTo(255);
+  for (Frame& f : *frames) {
+    f.masks[0].setTo(0, pillar);
+    f.hidden = {pillar, cv::Mat()};
+  }
+}
+
+// The frames in which someone is reported within 500 mm of the walker on the floor.
+std::vector<int> NearTheWalker(const ClipGroundTruth& truth, const std::vector<PeopleFrame>& out) {
+  std::vector<int> near;
+  for (size_t k = 0; k < out.size(); ++k) {
+    const Eigen::Vector2d walker(truth.frames[k].joints_mm(0, 0), truth.frames[k].joints_mm(2, 0));
+    for (const PersonFrame& p : out[k].people)
+      if (p.frame.joints_mm.cols() > 0 &&
+          (Eigen::Vector2d(p.frame.joints_mm(0, 0), p.frame.joints_mm(2, 0)) - walker).norm() < 500) {
+        near.push_back(static_cast<int>(k));
+        break;
+      }
+  }
+  return near;
+}
+
 // One walker through two cameras, the first of which sees them wholly behind a painted
-// pillar (their whole path's pixels painted, and left out of its masks, as a pillar in
-// front would leave them): the second camera's clear view starts them. Before, the first
-// camera's empty pixels where a person would show there contradicted every sighting
+// pillar: the second camera's clear view starts them. Before, the first camera's empty
+// pixels where a person would show there contradicted every sighting
 // (MultiTracker::Contradicted), and nobody was ever born.
 TEST(MultiTracker, AWalkerBehindAPaintedPillarInOneCameraIsBornFromTheOther) {
   test::TempDir dir;
   const fs::path clip = Render({Walker("07_01", {true, 0, 0, 0, 0}, 0)}, dir.path() / "behind", 2, 40);
   const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
   std::vector<Frame> frames = ObservedFrames(clip, truth, 2);
-  cv::Rect path;  // the walker's pixels in the first camera, over the clip
-  for (const Frame& f : frames) path |= cv::boundingRect(f.masks[0]);
-  const cv::Rect image(0, 0, frames[0].masks[0].cols, frames[0].masks[0].rows);
-  cv::Mat pillar = cv::Mat::zeros(image.size(), CV_8UC1);
-  pillar(cv::Rect(path.x - 6, path.y - 6, path.width + 12, path.height + 12) & image).setTo(255);
-  for (Frame& f : frames) {
-    f.masks[0].setTo(0, pillar);
-    f.hidden = {pillar, cv::Mat()};
-  }
+  PaintPillarInFirstCamera(&frames);
   const std::unique_ptr<GaitModel> model = ReadModelFile(Shared().model);
-  const std::vector<PeopleFrame> out = TrackPeople(*model, truth.cameras, Job(clip), frames);
-  int near = 0;  // frames with someone within 500 mm of the walker on the floor
-  for (size_t k = 0; k < out.size(); ++k) {
-    const Eigen::Vector2d walker(truth.frames[k].joints_mm(0, 0), truth.frames[k].joints_mm(2, 0));
-    for (const PersonFrame& p : out[k].people)
-      if (p.frame.joints_mm.cols() > 0 &&
-          (Eigen::Vector2d(p.frame.joints_mm(0, 0), p.frame.joints_mm(2, 0)) - walker).norm() < 500) {
-        ++near;
-        break;
-      }
-  }
-  std::printf("the walker behind the pillar: tracked within 500 mm in %d of %zu frames\n", near, out.size());
-  EXPECT_GE(near, static_cast<int>(out.size()) * 3 / 4);
+  const std::vector<int> near = NearTheWalker(truth, TrackPeople(*model, truth.cameras, Job(clip), frames));
+  std::printf("the walker behind the pillar: tracked within 500 mm in %zu of %zu frames\n", near.size(), frames.size());
+  EXPECT_GE(near.size(), frames.size() * 3 / 4);
+}
+
+// The same with the second camera's masks thinned by 2 px (a segmentation that misses the
+// body's edges): the fit explains them at an IoU near 0.5, and the first camera, where the
+// estimate is drawn wholly behind the pillar, at 0. A camera in which the person stands
+// behind a painted object has no say in their confirmation (MultiTracker::ConfirmIou), as
+// it has none in their birth. Measured: within 500 mm in 40 of 40 frames; with the first
+// camera's say, the walker was confirmed only at frame 20 (20 of 40).
+TEST(MultiTracker, AWalkerBehindAPaintedPillarInOneCameraIsConfirmedByTheOther) {
+  test::TempDir dir;
+  const fs::path clip = Render({Walker("07_01", {true, 0, 0, 0, 0}, 0)}, dir.path() / "thin", 2, 40);
+  const ClipGroundTruth truth = ReadGroundTruth(clip / "ground_truth.json");
+  std::vector<Frame> frames = ObservedFrames(clip, truth, 2);
+  PaintPillarInFirstCamera(&frames);
+  const cv::Mat square = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(5, 5));
+  for (Frame& f : frames) cv::erode(f.masks[1], f.masks[1], square);
+  const std::unique_ptr<GaitModel> model = ReadModelFile(Shared().model);
+  const std::vector<int> near = NearTheWalker(truth, TrackPeople(*model, truth.cameras, Job(clip), frames));
+  std::printf("the thinly seen walker behind the pillar: tracked within 500 mm in %zu of %zu frames, the first %d\n",
+              near.size(), frames.size(), near.empty() ? -1 : near[0]);
+  EXPECT_GE(near.size(), frames.size() * 3 / 4);
 }
 
 // One walker through one camera passing behind a painted pillar 1.6 m wide (their pixels
@@ -579,22 +610,14 @@ TEST(MultiTracker, AWalkerBehindAPaintedPillarKeepsTheirId) {
   const std::unique_ptr<GaitModel> model = ReadModelFile(Shared().model);
   const std::vector<PeopleFrame> out = TrackPeople(*model, truth.cameras, Job(clip), frames);
   std::set<int> ids;
-  int near = 0;  // frames with someone within 500 mm of the walker on the floor
-  for (size_t k = 0; k < out.size(); ++k) {
-    const Eigen::Vector2d walker(truth.frames[k].joints_mm(0, 0), truth.frames[k].joints_mm(2, 0));
-    bool found = false;
-    for (const PersonFrame& p : out[k].people) {
-      ids.insert(p.id);
-      found = found || (p.frame.joints_mm.cols() > 0 &&
-                        (Eigen::Vector2d(p.frame.joints_mm(0, 0), p.frame.joints_mm(2, 0)) - walker).norm() < 500);
-    }
-    near += found;
-  }
-  std::printf("behind the pillar for %d frames of %zu: %zu ids, within 500 mm in %d frames\n", hidden, out.size(),
-              ids.size(), near);
+  for (const PeopleFrame& f : out)
+    for (const PersonFrame& p : f.people) ids.insert(p.id);
+  const std::vector<int> near = NearTheWalker(truth, out);
+  std::printf("behind the pillar for %d frames of %zu: %zu ids, within 500 mm in %zu frames\n", hidden, out.size(),
+              ids.size(), near.size());
   EXPECT_GT(hidden, 15);  // longer than death_s at 30 frames/s
   EXPECT_EQ(ids.size(), 1u);
-  EXPECT_GE(near, static_cast<int>(out.size()) * 3 / 4);
+  EXPECT_GE(near.size(), out.size() * 3 / 4);
 }
 
 // One walker through one camera whose blob grows about its feet, frame by frame, to twice
