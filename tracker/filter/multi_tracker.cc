@@ -24,6 +24,14 @@ Frame PaintingApart(Frame frame) {
   return frame;
 }
 
+// Whether at least half of a drawing (CV_8UC1) is under `cover` (empty, or of another
+// size: nothing covers it).
+bool HalfUnder(const cv::Mat& drawn, const cv::Mat& cover) {
+  if (drawn.empty() || cover.size() != drawn.size()) return false;
+  const int own = cv::countNonZero(drawn);
+  return own > 0 && 2 * cv::countNonZero(drawn & cover) >= own;
+}
+
 }  // namespace
 
 bool MultiTrackerOptions::Check(std::string* why) const {
@@ -129,10 +137,8 @@ bool MultiTracker::Behind(const Person& p, const std::vector<cv::Mat>& painted) 
   if (p.drawn.empty()) return false;
   std::vector<cv::Mat> covers = Drawn(p.id, 0);
   for (size_t c = 0; c < cameras_.size() && c < p.drawn.size(); ++c) {
-    if (p.drawn[c].empty()) continue;
     if (c < painted.size() && painted[c].size() == covers[c].size()) covers[c] |= painted[c];
-    const int own = cv::countNonZero(p.drawn[c]);
-    if (own > 0 && 2 * cv::countNonZero(p.drawn[c] & covers[c]) >= own) return true;
+    if (HalfUnder(p.drawn[c], covers[c])) return true;
   }
   return false;
 }
@@ -143,10 +149,7 @@ double MultiTracker::ConfirmIou(const Person& p, const std::vector<cv::Mat>& pai
   for (size_t c = 0; c < p.last.cameras.size(); ++c) {
     const CameraScore& score = p.last.cameras[c];
     if (score.observed_px == 0 && score.model_px == 0) continue;  // no evidence (MeanIou)
-    if (c < p.drawn.size() && c < painted.size() && !p.drawn[c].empty() && painted[c].size() == p.drawn[c].size()) {
-      const int own = cv::countNonZero(p.drawn[c]);
-      if (own > 0 && 2 * cv::countNonZero(p.drawn[c] & painted[c]) >= own) continue;  // behind the painting
-    }
+    if (c < p.drawn.size() && c < painted.size() && HalfUnder(p.drawn[c], painted[c])) continue;
     sum += score.Iou();
     ++counted;
   }
@@ -380,6 +383,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
                                                            : std::numeric_limits<double>::infinity();
   };
   std::stable_sort(order.begin(), order.end(), [&](const Person* a, const Person* b) { return depth(a) < depth(b); });
+  const std::vector<cv::Mat>& painted = frame.hidden;  // the source's hidden pixels (PaintingApart)
   for (Person* p : order) {
     Frame mine = PaintingApart(frame);
     if (!frame.dropped) {
@@ -398,7 +402,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
     p->drawn.assign(cameras_.size(), cv::Mat());
     p->tracker->DrawEstimate(p->last, &p->drawn);
     p->giant = p->has_estimate && p->tracker->StatureMm(p->last) > options_.max_stature_mm;
-    if (p->last.status == TrackStatus::kTracked && ConfirmIou(*p, frame.hidden) >= options_.confirm_iou && !p->giant)
+    if (p->last.status == TrackStatus::kTracked && ConfirmIou(*p, painted) >= options_.confirm_iou && !p->giant)
       ++p->good;
     p->confirmed = p->confirmed || p->good >= options_.confirm_frames;
     GoBackOver(p, mine);
@@ -418,7 +422,7 @@ PeopleFrame MultiTracker::Step(const Frame& frame) {
   std::vector<int> ending;
   for (Person* p : order) {
     p->lost_s = p->last.status == TrackStatus::kLost ? p->lost_s + dt : 0;
-    p->unseen_s = p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p, frame.hidden) ? 0 : p->unseen_s + dt;
+    p->unseen_s = p->last.status == TrackStatus::kTracked || frame.dropped || Behind(*p, painted) ? 0 : p->unseen_s + dt;
     p->giant_s = p->giant ? p->giant_s + dt : 0;
     if (p->lost_s >= options_.death_s - tolerance || p->unseen_s >= options_.death_s - tolerance ||
         p->giant_s >= options_.death_s - tolerance ||

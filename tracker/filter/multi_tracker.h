@@ -37,27 +37,26 @@
 // frames are tracked with a mean IoU of confirm_iou or more (over the cameras in which
 // they do not stand behind a painted object: a walker wholly behind a pillar in one
 // camera, explained at 0.5 in the other, was held back for 15 frames by the first
-// camera's 0); one who is not by then was
-// something else (a blob one camera places far away, which no body explains: clutter
-// crossing a webcam's view was started as a person 9 m away and explained at IoU 0.2 by
-// the best body; walkers are explained at 0.4-0.7) and ends unreported.
+// camera's 0); one who is not by then was something else (a blob one camera places far
+// away, which no body explains: clutter crossing a webcam's view was started as a person
+// 9 m away and explained at IoU 0.2 by the best body; walkers are explained at 0.4-0.7)
+// and ends unreported.
 //
 // Death. A person lost (tracker.h: explained badly, or out of every view), or not tracked
 // while nobody and nothing stands in front of them (half their drawing under others' or
-// under a painted object in some camera),
-// for death_s in a row ends: a single tracker keeps a person it cannot see
-// predicted for up to two seconds, taking them for hidden, but among several people
-// tracked the ones who could hide them are known (and each tracker, told where the others
-// are drawn, predicts its person while behind them rather than drop them: tracker.h). A
-// person standing taller than max_stature_mm for death_s in a row ends: what only a giant
-// explains is not a person (a clutter blob drifting over a plaza's far side was followed
-// 11 m away as a body 2.5 m tall, and a man at a car's open boot at vtest.avi's edge, legs
-// hidden, 56 m away as one 2.24 m tall: the silhouette fit grows a body to its bounds,
-// 2.3-2.5 m, and holds it there);
-// such a frame does not count towards confirmation either. Two people within duplicate_mm
-// of each other on the floor for duplicate_s in a row (a second: people crossing share a
-// place for a third of one), or duplicate_same_way_s walking the same way, are one person
-// followed twice (two bodies do not stand in one place): the one born later ends.
+// under a painted object in some camera), for death_s in a row ends: a single tracker
+// keeps a person it cannot see predicted for up to two seconds, taking them for hidden,
+// but among several people tracked the ones who could hide them are known (and each
+// tracker, told where the others are drawn, predicts its person while behind them rather
+// than drop them: tracker.h). A person standing taller than max_stature_mm for death_s in
+// a row ends: what only a giant explains is not a person (a clutter blob drifting over a
+// plaza's far side was followed 11 m away as a body 2.5 m tall, and a man at a car's open
+// boot at vtest.avi's edge, legs hidden, 56 m away as one 2.24 m tall: the silhouette fit
+// grows a body to its bounds, 2.3-2.5 m, and holds it there); such a frame does not count
+// towards confirmation either. Two people within duplicate_mm of each other on the floor
+// for duplicate_s in a row (a second: people crossing share a place for a third of one),
+// or duplicate_same_way_s walking the same way, are one person followed twice (two bodies
+// do not stand in one place): the one born later ends.
 //
 // A birth's start is gone over backwards, as a single tracker's is (tracker.h,
 // TrackerOptions::start_backwards_s): start_backwards_s after the first frame a person was
