@@ -137,7 +137,7 @@ bool MultiTracker::Behind(const Person& p, const std::vector<cv::Mat>& painted) 
   if (p.drawn.empty()) return false;
   std::vector<cv::Mat> covers = Drawn(p.id, 0);
   for (size_t c = 0; c < cameras_.size() && c < p.drawn.size(); ++c) {
-    if (c < painted.size() && painted[c].size() == covers[c].size()) covers[c] |= painted[c];
+    if (c < painted.size()) covers[c] = EitherHidden(covers[c], painted[c]);
     if (HalfUnder(p.drawn[c], covers[c])) return true;
   }
   return false;

@@ -50,6 +50,13 @@ double ShareInView(const Camera& camera, const Eigen::Matrix3Xd& joints) {
 
 cv::Mat CameraOf(const std::vector<cv::Mat>& masks, size_t c) { return c < masks.size() ? masks[c] : cv::Mat(); }
 
+// The top of the head above the floor of a body whose bone ends are `joints` (world, mm)
+// at `size`: the head bone's end (or, without one, the highest) and its radius above it.
+double HeadTopMm(const Eigen::Matrix3Xd& joints, int head, double size) {
+  const double top = head >= 0 && head < joints.cols() ? joints(1, head) : joints.row(1).maxCoeff();
+  return top + kHeadTopMm * size;
+}
+
 }  // namespace
 
 std::string_view TrackStatusName(TrackStatus status) {
@@ -173,7 +180,7 @@ Tracker::Tracker(const GaitModel& model, const std::vector<Camera>& cameras, con
     Random random(12345, i);
     state_model_->Sample(origin, &random, state.data());
     state_model_->Evaluate(state.data(), &joints);
-    sum += (head_ >= 0 ? joints(1, head_) : joints.row(1).maxCoeff()) + kHeadTopMm;
+    sum += HeadTopMm(joints, head_, 1);
   }
   model_height_mm_ = sum / 64;
 }
@@ -967,10 +974,8 @@ bool Tracker::Behind(const TrackedFrame& estimate, const Frame& frame) const {
 }
 
 double Tracker::StatureMm(const TrackedFrame& estimate) const {
-  const Eigen::Matrix3Xd& joints = estimate.joints_mm;
-  if (joints.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
-  const double top = head_ >= 0 && head_ < joints.cols() ? joints(1, head_) : joints.row(1).maxCoeff();
-  return top + kHeadTopMm * estimate.size - estimate.build.floor_mm;
+  if (estimate.joints_mm.cols() == 0) return std::numeric_limits<double>::quiet_NaN();
+  return HeadTopMm(estimate.joints_mm, head_, estimate.size) - estimate.build.floor_mm;
 }
 
 double Tracker::SizeOf(double height_mm) const { return std::clamp(height_mm / model_height_mm_, 0.8, 1.25); }
