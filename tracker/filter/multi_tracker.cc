@@ -24,14 +24,6 @@ Frame PaintingApart(Frame frame) {
   return frame;
 }
 
-// Whether at least half of a drawing (CV_8UC1) is under `cover` (empty, or of another
-// size: nothing covers it).
-bool HalfUnder(const cv::Mat& drawn, const cv::Mat& cover) {
-  if (drawn.empty() || cover.size() != drawn.size()) return false;
-  const int own = cv::countNonZero(drawn);
-  return own > 0 && 2 * cv::countNonZero(drawn & cover) >= own;
-}
-
 }  // namespace
 
 bool MultiTrackerOptions::Check(std::string* why) const {
@@ -297,7 +289,7 @@ bool MultiTracker::Bear(const Candidate& c, const std::vector<Frame>& frames, in
   options.restart_within_mm = options_.restart_within_mm;
   options.split_merged_starts = true;  // as the birth saw them
   options.hidden_is_painted = false;   // the others' drawings are hidden too
-  options.walk_on_as_seen = false;    // vtest.avi: 25 -> 29 ids (TrackerOptions)
+  options.walk_on_as_seen = TrackerOptions::WalkOn::kBehindPainting;  // (TrackerOptions)
   // Among others, a camera whose reading of the place differs is most likely seeing
   // someone else, and a body turned to any heading fits a neighbour: neither is tried
   // (the 3-walker crossing from its videos, 4 seeds: MOTA 0.976 -> 0.952 with turns of

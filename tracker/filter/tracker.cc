@@ -775,7 +775,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   const bool behind = !left && recent && bad_frames_ > 0 && Behind(out, frame);
   if (behind || (!left && bad_frames_ >= options_.lost_frames && elsewhere)) {
     out.status = TrackStatus::kPredicted;
-    if (!hidden_) WalkOnAsSeen();
+    if (!hidden_) WalkOnAsSeen(out, frame);
     hidden_ = true;
     behind_ = behind;
   } else if (nobody || bad_frames_ >= options_.lost_frames || left) {
@@ -804,8 +804,19 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   return out;
 }
 
-void Tracker::WalkOnAsSeen() {
-  if (!options_.walk_on_as_seen || !legs_by_phase_ || !(travel_.Speed() >= options_.travel.min_speed_mm_s)) return;
+void Tracker::WalkOnAsSeen(const TrackedFrame& estimate, const Frame& frame) {
+  using WalkOn = TrackerOptions::WalkOn;
+  if (options_.walk_on_as_seen == WalkOn::kNever || !legs_by_phase_ ||
+      !(travel_.Speed() >= options_.travel.min_speed_mm_s))
+    return;
+  if (options_.walk_on_as_seen == WalkOn::kBehindPainting) {
+    const std::vector<cv::Mat>& painted = Painted(frame);
+    std::vector<cv::Mat> drawn(cameras_.size());
+    DrawEstimate(estimate, &drawn);
+    bool behind = false;
+    for (size_t c = 0; c < drawn.size() && c < painted.size(); ++c) behind = behind || HalfUnder(drawn[c], painted[c]);
+    if (!behind) return;
+  }
   const PlacementIndex p = state_model_->placement();
   const Eigen::VectorXd mean = filter_->Mean();
   const double going = mean[p.heading] + (mean[p.rate] < 0 ? std::numbers::pi : 0);

@@ -316,10 +316,13 @@ struct TrackerOptions {
   // frames give the painting apart (Frame::painted).
   bool hidden_is_painted = true;
   // Going out of sight, the particles walk on the way and at the pace the estimates went
-  // (WalkOnAsSeen). Several people tracked at once clear it: hidden behind one another,
-  // walkers 20-40 px tall whose half-second travel is noisy walked on out from behind the
-  // others and were lost (vtest.avi: 25 -> 29 ids).
-  bool walk_on_as_seen = true;
+  // (WalkOnAsSeen): whatever hides them (kOutOfSight), only a painted object (kBehindPainting:
+  // half their drawing under it in some camera), or never. Several people tracked at once
+  // take kBehindPainting: hidden behind one another, walkers 20-40 px tall whose half-second
+  // travel is noisy walked on out from behind the others and were lost (vtest.avi: 25 -> 31
+  // ids), while behind a pillar 2 m wide a walker kept to half their pace was born again.
+  enum class WalkOn { kNever, kBehindPainting, kOutOfSight };
+  WalkOn walk_on_as_seen = WalkOn::kOutOfSight;
   // Starts also try each camera's own reading of the place where it differs from the
   // others' by more than relocate_distance_mm (Guess; InitialGuess::other_floors_mm), and
   // starts and second looks where two cameras' lines of sight meet (MeetingPlaces).
@@ -509,7 +512,7 @@ class Tracker {
   // an occluder takes the body away bit by bit, the frames still tracked fit the slice
   // left and turn and slow the walk (a webcam's walker behind a pillar: 20 degrees off and
   // 14% slow, 400 mm aside after a second hidden).
-  void WalkOnAsSeen();
+  void WalkOnAsSeen(const TrackedFrame& estimate, const Frame& frame);
   // One look for the light of the walkers' shadows (ShadowLight), with the estimate placed
   // as `capsules`. A camera alone cannot tell how far away the person is: where a start
   // read the far end of an attached shadow as the feet, the body stands nearer and covers

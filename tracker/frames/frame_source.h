@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core/mat.hpp>
+#include <opencv2/core.hpp>
 
 #include "calibration/camera.h"
 
@@ -44,6 +44,14 @@ struct Frame {
 inline cv::Mat EitherHidden(const cv::Mat& a, const cv::Mat& b) {
   if (a.empty() || b.empty() || a.size() != b.size()) return a.empty() ? b : a;
   return a | b;
+}
+
+// Whether at least half of a drawing (CV_8UC1) is under `cover` (empty, or of another
+// size: nothing covers it).
+inline bool HalfUnder(const cv::Mat& drawn, const cv::Mat& cover) {
+  if (drawn.empty() || cover.size() != drawn.size()) return false;
+  const int own = cv::countNonZero(drawn);
+  return own > 0 && 2 * cv::countNonZero(drawn & cover) >= own;
 }
 
 // Every pixel that may hide a person in `frame`, per camera: Frame::hidden and
