@@ -511,7 +511,8 @@ class Tracker {
   // estimates went over the travel check's window, at their pace (StateModel::Pace). As
   // an occluder takes the body away bit by bit, the frames still tracked fit the slice
   // left and turn and slow the walk (a webcam's walker behind a pillar: 20 degrees off and
-  // 14% slow, 400 mm aside after a second hidden).
+  // 14% slow, 400 mm aside after a second hidden). With kBehindPainting, only when
+  // `estimate` is drawn half under the painting in some camera.
   void WalkOnAsSeen(const TrackedFrame& estimate, const Frame& frame);
   // One look for the light of the walkers' shadows (ShadowLight), with the estimate placed
   // as `capsules`. A camera alone cannot tell how far away the person is: where a start
