@@ -172,8 +172,9 @@ void MultiTracker::Look(const Frame& unexplained, bool final_batch) {
     min_px = std::max(min_px, static_cast<int>(std::lround(options_.min_birth_share * c.width * c.height)));
   std::vector<PersonSighting> sightings;
   std::vector<bool> shaped;  // PersonShaped, per sighting
+  const std::optional<Eigen::Vector3d> light = shadow_light_ ? shadow_light_->light() : std::nullopt;
   for (const PersonSighting& s : LocatePeople(cameras_, unexplained.masks, min_px, true, HiddenPixels(unexplained),
-                                              unexplained.painted)) {
+                                              unexplained.painted, light)) {
     const bool whole_person = PersonShaped(s);
     if (s.found && s.whole && (whole_person || Clear(s.floor_mm)) &&
         !Contradicted(s, unexplained.masks, unexplained.painted)) {

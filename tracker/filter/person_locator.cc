@@ -63,6 +63,7 @@ struct BlobEnds {
   double top_u = 0;               // the head: column of the top row
   double axis = 0;                // the body's axis: median column of the upper half
   double upper_width = 0;         // the upper half's rows' median width in pixels
+  double reach = 0;               // how far from the axis the feet are looked for, pixels
 };
 
 // The ends of blob `label` in `box`. The body's axis is the median column of the blob's
@@ -107,7 +108,80 @@ BlobEnds FindBlobEnds(const cv::Mat& labels, int label, const cv::Rect& box) {
   ends.top_u = top_count > 0 ? top_u / top_count : axis;
   ends.axis = axis;
   ends.upper_width = widths.empty() ? 0 : Median(widths);
+  ends.reach = reach;
   return ends;
+}
+
+// How much nearer an adult's height the top must read at the reading's place than at the
+// feet above a shadow's tip for the reading to be kept (FeetAboveShadow): the spread of
+// adults' heights, so that only a camera looking down enough to tell the two places apart
+// by the head overrules the light.
+constexpr double kShadowTieMm = kAdultSpreadMm;
+
+// Where the feet are when the blob holds the person's shadow, cast by `light` (unit,
+// towards it) on the floor: a point h above the feet p casts its shadow at p + h s, s =
+// -(light_x, light_z) / light_y, so the shadow runs from the feet along s's image. Its
+// far end, the head's shadow, is the blob's pixels farthest along that direction; its
+// floor point T = p + h(p) s, with h(p) the height the top ray reads above p (linear in
+// p; an adult's when the head is cut), gives p. A shadow running up the image (away from
+// the camera, over 30 degrees above the image's rows) leaves the reading as it is: it
+// does not move the lowest pixels, and its far end may be the head. So does an answer
+// whose feet are not below the body's axis (within `ends.reach`) and above the blob's
+// bottom, or that reads no person's height (a mask without the shadow: the far end is a
+// foot or a hand). On the surveillance clips a low light towards a camera put one
+// camera's reading 0.9-1.1 m nearer than the feet, farther than a tracked person's
+// prediction is looked for; in the locator's test the shadow towards the camera hid the
+// walker (read over 2.3 m tall) or put them 1.1 m off, one cast sideways 250-470 mm
+// (FindBlobEnds keeps the feet within reach of the axis, where the shadow's near edge
+// still is); with the light, 25-134 mm.
+Eigen::Vector3d FeetAboveShadow(const Camera& camera, const cv::Mat& labels, int label, const cv::Rect& box,
+                                const BlobEnds& ends, const Eigen::Vector3d& top_ray, bool head_cut,
+                                const Eigen::Vector3d& reading, const Eigen::Vector3d& light) {
+  if (!(light.y() > 0.05)) return reading;  // a light along the floor casts no readable shadow
+  const Eigen::Vector2d s(-light.x() / light.y(), -light.z() / light.y());  // per mm up
+  Eigen::Vector2d from, to;
+  if (!camera.Project(reading, &from) || !camera.Project(reading + 1000 * Eigen::Vector3d(s.x(), 0, s.y()), &to))
+    return reading;
+  const Eigen::Vector2d d = (to - from).normalized();
+  if (!(d.y() > -0.5)) return reading;
+  // The far end: the mean of the pixels within a pixel of the farthest along d.
+  double farthest = -std::numeric_limits<double>::infinity();
+  for (int v = box.y; v < box.y + box.height; ++v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = box.x; u < box.x + box.width; ++u)
+      if (row[u] == label) farthest = std::max(farthest, d.x() * u + d.y() * v);
+  }
+  Eigen::Vector2d end = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (int v = box.y; v < box.y + box.height; ++v) {
+    const int* row = labels.ptr<int>(v);
+    for (int u = box.x; u < box.x + box.width; ++u)
+      if (row[u] == label && d.x() * u + d.y() * v >= farthest - 1) end += Eigen::Vector2d(u + 0.5, v + 0.5), ++count;
+  }
+  if (count == 0) return reading;
+  const Eigen::Matrix2Xd far_edge = end / count + 0.5 * d;
+  const Eigen::Vector3d eye = camera.CentreInWorld();
+  const Eigen::Vector3d ray = camera.PixelRaysInWorld(far_edge).col(0);
+  if (!(ray.y() < -1e-6)) return reading;
+  const Eigen::Vector3d tip3 = eye + ray * (-eye.y() / ray.y());
+  const Eigen::Vector2d tip(tip3.x(), tip3.z()), eye_floor(eye.x(), eye.z());
+  // h(p) = a + b.p: the top ray's height above the floor point p (an adult's, head cut).
+  const Eigen::Vector2d horizontal(top_ray.x(), top_ray.z());
+  if (horizontal.squaredNorm() < 1e-12) return reading;
+  const Eigen::Vector2d b = head_cut ? Eigen::Vector2d::Zero() : Eigen::Vector2d(top_ray.y() * horizontal / horizontal.squaredNorm());
+  const double a = head_cut ? kAdultHeightMm : eye.y() - b.dot(eye_floor);
+  // p = tip - (a + b.p) s, solved for p (Sherman-Morrison on I + s b^T).
+  const Eigen::Vector2d q = tip - a * s;
+  const double denominator = 1 + b.dot(s);
+  if (std::abs(denominator) < 0.1) return reading;
+  const Eigen::Vector2d p = q - s * (b.dot(q) / denominator);
+  const double h = a + b.dot(p);
+  const Eigen::Vector3d feet(p.x(), 0, p.y());
+  Eigen::Vector2d pixel;
+  if (!(h > 1000 && h < 2300) || !camera.Project(feet, &pixel) || std::abs(pixel.x() - ends.axis) > ends.reach ||
+      pixel.y() > ends.foot_v + 1.5)
+    return reading;
+  return feet;
 }
 
 // Whether the feet of blob `label` are hidden by someone nearer: at least half of its
@@ -120,12 +194,11 @@ bool FeetHidden(const cv::Mat& labels, int label, const cv::Rect& box, const Blo
                 const cv::Mat& painted) {
   const int below = static_cast<int>(ends.foot_v) + 1;
   if (hidden.empty() || hidden.size() != labels.size() || below >= hidden.rows) return false;
-  const double reach = 0.3 * box.height;
   const int* row = labels.ptr<int>(below - 1);
   const uchar* under = hidden.ptr<uchar>(below);
   int feet = 0, on_hidden = 0;
   for (int u = box.x; u < box.x + box.width; ++u) {
-    if (row[u] != label || std::abs(u - ends.axis) > reach) continue;
+    if (row[u] != label || std::abs(u - ends.axis) > ends.reach) continue;
     ++feet;
     on_hidden += under[u] != 0;
   }
@@ -250,7 +323,8 @@ std::vector<cv::Rect> CutAcross(const cv::Mat& labels, int label, const cv::Rect
 
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
                                          int min_blob_px, bool split_merged, const std::vector<cv::Mat>& hidden,
-                                         const std::vector<cv::Mat>& painted) {
+                                         const std::vector<cv::Mat>& painted,
+                                         const std::optional<Eigen::Vector3d>& light) {
   // Per camera, every blob big enough, with where it stands and how tall it is there.
   struct Candidate {
     int area;
@@ -293,11 +367,27 @@ std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, con
       if (!feet_cut) {
         if (!(rays(1, 0) < -1e-6)) return false;  // the foot ray must go down to the floor
         floor = eye + rays.col(0) * (-eye.y() / rays(1, 0));
+        // Height: the top ray's point nearest the vertical line through a floor point
+        // (`along` the top ray's horizontal part).
+        const auto top_at = [&](const Eigen::Vector3d& at, double* along) {
+          *along = horizontal.dot(Eigen::Vector2d(at.x() - eye.x(), at.z() - eye.z())) / horizontal.squaredNorm();
+          return eye.y() + *along * r.y();
+        };
+        if (light) {
+          // The segmentation may have removed the shadow after all (MOG2 marks the lighter
+          // part of one as shadow): of the two places, the one where the top reads nearer
+          // an adult's height, the shadow's when they are within kShadowTieMm (a camera
+          // at head height, whose top ray is level, cannot tell).
+          const Eigen::Vector3d feet = FeetAboveShadow(cameras[c], labels, l, box, ends, r, head_cut, floor, *light);
+          double along_feet = 0, along_reading = 0;
+          const double off_feet = std::abs(top_at(feet, &along_feet) - kAdultHeightMm);
+          const double off_reading = std::abs(top_at(floor, &along_reading) - kAdultHeightMm);
+          if (head_cut || along_reading <= 0 || (along_feet > 0 && off_feet <= off_reading + kShadowTieMm))
+            floor = feet;
+        }
         if (!head_cut) {
-          // Height: the top ray's point nearest the vertical line through the floor point.
-          const Eigen::Vector2d to_floor(floor.x() - eye.x(), floor.z() - eye.z());
-          const double along = horizontal.dot(to_floor) / horizontal.squaredNorm();
-          height = eye.y() + along * r.y();
+          double along = 0;
+          height = top_at(floor, &along);
           // A person stands 1-2.3 m tall; clutter (a blob in the air, a shadow) does not.
           if (!(along > 0 && height > 1000 && height < 2300)) return along > 0 && height >= 2300;
           // And is upright, the upper half no wider than kMaxUpperWidth of the height there,
@@ -508,8 +598,9 @@ bool FuseReadings(const std::vector<Camera>& cameras, const std::vector<Eigen::V
 
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks, int min_blob_px,
                             const PersonPreference& prefer, const std::vector<cv::Mat>& hidden,
-                            const std::vector<cv::Mat>& painted, std::vector<PersonSighting>* everyone) {
-  std::vector<PersonSighting> people = LocatePeople(cameras, masks, min_blob_px, false, hidden, painted);
+                            const std::vector<cv::Mat>& painted, std::vector<PersonSighting>* everyone,
+                            const std::optional<Eigen::Vector3d>& light) {
+  std::vector<PersonSighting> people = LocatePeople(cameras, masks, min_blob_px, false, hidden, painted, light);
   PersonSighting sighting = ChoosePerson(people, prefer);
   if (everyone) *everyone = std::move(people);
   sighting.boxes.resize(cameras.size());

@@ -2,7 +2,9 @@
 // recovery after a loss. In each camera the bottom of a blob's body (its lowest pixels near
 // the axis of its upper half, so that a shadow cast sideways along the floor is not taken
 // for the feet) is where the feet touch the floor (y = 0), so its ray meets the floor at
-// the person's place; the ray through the blob's top, at that place, gives the height. A
+// the person's place; with the light known (ShadowLight), the feet are where the far end
+// of the shadow in the blob says they are; the ray through the blob's top, at that place,
+// gives the height. A
 // blob cut by the image's bottom edge (a camera near the walk) stands where its top ray
 // is an adult's 1.7 m above the floor, but no farther than where the bottom edge meets
 // the floor, if it shows at least 0.8 m of a person there, its height unknown; so does one
@@ -39,6 +41,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -80,11 +83,14 @@ struct PersonSighting {
 // a blob resting on them has its feet hidden, and is placed by its head and the hidden
 // run below it. `painted` (optional, likewise): the static occluders alone, when known; a
 // blob with one right above its top as well is in front of it, not behind (a drawing of
-// someone is an estimate a few pixels off, and does not count).
+// someone is an estimate a few pixels off, and does not count). `light` (unit, towards it;
+// ShadowLight's, when found): the masks hold the people's shadows, and a blob's lowest
+// pixels may be its shadow's tip rather than its feet (FeetAboveShadow, person_locator.cc).
 std::vector<PersonSighting> LocatePeople(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
                                          int min_blob_px = 60, bool split_merged = false,
                                          const std::vector<cv::Mat>& hidden = {},
-                                         const std::vector<cv::Mat>& painted = {});
+                                         const std::vector<cv::Mat>& painted = {},
+                                         const std::optional<Eigen::Vector3d>& light = {});
 
 // Which one, when several people are seen.
 struct PersonPreference {
@@ -127,6 +133,7 @@ bool FuseReadings(const std::vector<Camera>& cameras, const std::vector<Eigen::V
 PersonSighting LocatePerson(const std::vector<Camera>& cameras, const std::vector<cv::Mat>& masks,
                             int min_blob_px = 60, const PersonPreference& prefer = {},
                             const std::vector<cv::Mat>& hidden = {}, const std::vector<cv::Mat>& painted = {},
-                            std::vector<PersonSighting>* everyone = nullptr);
+                            std::vector<PersonSighting>* everyone = nullptr,
+                            const std::optional<Eigen::Vector3d>& light = {});
 
 }  // namespace jgpm

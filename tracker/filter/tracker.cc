@@ -202,7 +202,8 @@ Tracker::Sightings Tracker::Locate(const Frame& frame) const {
   seen.time_s = frame.time_s;
   seen.may_hide = !frame.hidden.empty() || !frame.painted.empty();
   if (!frame.dropped)
-    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, HiddenPixels(frame), Painted(frame));
+    seen.people = LocatePeople(cameras_, frame.masks, 60, options_.split_merged_starts, HiddenPixels(frame), Painted(frame),
+                               shadow_light_.light());
   return seen;
 }
 
@@ -531,7 +532,7 @@ TrackedFrame Tracker::Step(const Frame& frame) {
   const auto located = [&]() -> const PersonSighting& {
     if (!sighting)
       sighting = LocatePerson(cameras_, frame.masks, 60, PersonPreference::Near(predicted_floor_mm), HiddenPixels(frame),
-                              Painted(frame), &everyone);
+                              Painted(frame), &everyone, shadow_light_.light());
     return *sighting;
   };
   if (!fresh_ && !frame.dropped && options_.relocate_every > 0 && frames_since_start_ % options_.relocate_every == 0) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -22,6 +23,7 @@
 #include "tracker/body/body_model.h"
 #include "tracker/body/ray_caster.h"
 #include "tracker/clip/clip_rig.h"
+#include "tracker/filter/shadow_light.h"
 
 namespace jgpm {
 namespace {
@@ -671,6 +673,60 @@ TEST(PersonLocator, ReadingsOffAlongTheirLinesOfSightMeetAtThePerson) {
   ASSERT_TRUE(FuseReadings(side_by_side, {truth + Eigen::Vector2d(600, 0), truth + Eigen::Vector2d(-600, 0)}, &place));
   EXPECT_LT((place - truth).norm(), 200) << place.transpose();
   EXPECT_GT(place.x(), truth.x());
+}
+
+// The walker's shadow on the floor seen by a camera looking down on them, from lights
+// 30-60 degrees up on every side. Cast towards the camera (a light beyond the walker),
+// their blob's lowest pixels are their head's shadow, 1-3 m nearer than their feet: without
+// the light they are not found (the blob reads over 2.3 m tall there) or are found that far
+// off; with it, where they stand. Cast sideways or away, the light changes nothing that
+// matters. The shadow: each capsule laid on the floor where the light casts it (its ends
+// moved along the light to y = 0; a sphere's shadow's stretch along the light left out).
+// With the light known but no shadow in the mask (a segmentation that removed it), the
+// place is the one found without the light.
+TEST(PersonLocator, AShadowCastTowardsTheCameraIsNotTheFeet) {
+  const OneBehindAnother s = PlaceOneBehindAnother(0);
+  // 6 m up and 11 m back, looking down 31 degrees at the floor before the walker: their
+  // shadow stays in view.
+  const Camera camera = LookAtCamera("cam0", 640, 480, 900, {0, 6000, -11000}, {0, 0, -1000});
+  const cv::Mat body = Render(camera, s.near);
+  const PersonSighting clean = LocatePerson({camera}, {body});
+  ASSERT_TRUE(clean.found);
+  // Without a shadow the blob's bottom is the nearest toe, ahead of the root.
+  const double clean_off = (clean.floor_mm - s.near_root).norm();
+  EXPECT_LT(clean_off, 150);
+  double worst = 0;
+  for (const double elevation : {30.0, 45.0, 60.0}) {
+    for (const double azimuth : {-20.0, 0.0, 20.0, 90.0, 180.0, 270.0}) {  // 0: away from the camera (+z)
+      const Eigen::Vector3d light = ShadowLight::Direction(azimuth, elevation);
+      std::vector<Capsule> shadow = s.near;
+      for (Capsule& c : shadow) {
+        c.from_mm -= c.from_mm.y() / light.y() * light;
+        c.to_mm -= c.to_mm.y() / light.y() * light;
+      }
+      cv::Mat mask;
+      cv::bitwise_or(body, Render(camera, shadow), mask);
+      const PersonSighting unaware = LocatePerson({camera}, {mask});
+      const PersonSighting aware = LocatePerson({camera}, {mask}, 60, {}, {}, {}, nullptr, light);
+      ASSERT_TRUE(aware.found) << azimuth << " " << elevation;
+      const double off = (aware.floor_mm - s.near_root).norm();
+      const double unaware_off = unaware.found ? (unaware.floor_mm - s.near_root).norm() : -1;
+      std::printf("light from %3.0f deg, %2.0f deg up: %4.0f mm from the root without the light (-1: not found), "
+                  "%3.0f mm with it; height %4.0f mm (without a shadow %4.0f)\n",
+                  azimuth, elevation, unaware_off, off, aware.height_mm, clean.height_mm);
+      EXPECT_LT(off, 200) << azimuth << " " << elevation;
+      EXPECT_NEAR(aware.height_mm, clean.height_mm, 100) << azimuth << " " << elevation;
+      if (std::abs(azimuth) <= 20) {
+        EXPECT_TRUE(!unaware.found || unaware_off > 700) << azimuth << " " << elevation;
+      }
+      // No shadow in the mask: the light changes nothing.
+      const PersonSighting no_shadow = LocatePerson({camera}, {body}, 60, {}, {}, {}, nullptr, light);
+      ASSERT_TRUE(no_shadow.found);
+      EXPECT_LT((no_shadow.floor_mm - clean.floor_mm).norm(), 1) << azimuth << " " << elevation;
+      worst = std::max(worst, off);
+    }
+  }
+  std::printf("with the light known: at most %.0f mm from the root (%.0f mm without a shadow)\n", worst, clean_off);
 }
 
 }  // namespace
